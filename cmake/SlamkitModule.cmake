@@ -1,0 +1,38 @@
+# Warnings and sanitizers for the project's own targets only.
+function(slamkit_target_options target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Werror -Wpedantic)
+  if(SLAMKIT_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                             -fno-sanitize-recover=all)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# slamkit_module(NAME DEPS dep1 dep2 ...): static library slamkit_NAME, alias slamkit::NAME.
+# Sources are listed by the caller with target_sources.
+function(slamkit_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  add_library(slamkit_${name} STATIC)
+  add_library(slamkit::${name} ALIAS slamkit_${name})
+  target_include_directories(slamkit_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
+  target_link_libraries(slamkit_${name} PUBLIC ${ARG_DEPS})
+  slamkit_target_options(slamkit_${name})
+  if(SLAMKIT_SANITIZE)
+    target_link_options(slamkit_${name} INTERFACE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...]): one gtest binary registered with ctest.
+function(slamkit_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name})
+  target_sources(${name} PRIVATE ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    SLAMKIT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    SLAMKIT_DATASETS_DIR="${PROJECT_SOURCE_DIR}/../shared/datasets"
+    SLAMKIT_CLI="$<TARGET_FILE:slamkit>")
+  slamkit_target_options(${name})
+  include(GoogleTest)
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+endfunction()

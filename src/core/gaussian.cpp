@@ -1,0 +1,16 @@
+#include "slamkit/core/gaussian.hpp"
+
+#include <Eigen/Cholesky>
+
+namespace slamkit {
+
+double Gaussian::SquaredMahalanobis(const Eigen::VectorXd& x) const {
+  const Eigen::VectorXd d = x - mean;
+  return d.dot(covariance.ldlt().solve(d));
+}
+
+double SquaredMahalanobis2(const Eigen::Vector2d& nu, const Eigen::Matrix2d& S) {
+  return nu.dot(S.inverse() * nu);
+}
+
+}  // namespace slamkit
