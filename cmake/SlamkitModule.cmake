@@ -23,11 +23,13 @@ function(slamkit_module name)
 endfunction()
 
 # slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...]): one gtest binary registered with ctest.
-function(slamkit_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+function(slamkit_test)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
+  set(name ${ARG_NAME})
   add_executable(${name})
   target_sources(${name} PRIVATE ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_compile_definitions(${name} PRIVATE
     SLAMKIT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SLAMKIT_DATASETS_DIR="${PROJECT_SOURCE_DIR}/../shared/datasets"

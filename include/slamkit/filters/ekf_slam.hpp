@@ -10,6 +10,7 @@
 #include "slamkit/core/ids.hpp"
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/filters/data_association.hpp"
+#include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/models/motion_model.hpp"
 #include "slamkit/models/point_sensor.hpp"
 
@@ -63,6 +64,8 @@ class EkfSlam {
   Eigen::Matrix2d LandmarkCovariance(int landmark) const;
   // The id of the observation that created the landmark (kNoLandmark if it had none).
   LandmarkId LandmarkSourceId(int landmark) const { return source_ids_[landmark]; }
+  // The estimated landmarks with their marginal covariances.
+  LandmarkMap Map() const;
   // The full symmetric covariance (a copy; O(n²), for tests and output).
   Eigen::MatrixXd Covariance() const;
   Eigen::VectorXd State() const { return x_.head(n_); }

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/sim/world.hpp"
@@ -19,9 +21,13 @@ struct PathFigureData {
   LandmarkWorld true_landmarks;
   LandmarkMap map;
   double ellipse_sigma = 2.0;
+  int width_px = 1200;
+  int height_px = 1000;
 };
 
-// Writes the figure as PNG or SVG, chosen by the extension, atomically (temp file + rename).
+// Writes the figure as PNG or SVG, chosen by the extension (".png" or ".svg", any case),
+// atomically (temp file + rename). Throws std::invalid_argument for another extension and
+// std::runtime_error naming `path` when it cannot be written; a failure leaves no file.
 void WritePathFigure(const std::filesystem::path& path, const PathFigureData& data);
 
 // Consistency over time: ANEES per step with its χ² band (top panel), and position and heading
@@ -34,8 +40,20 @@ struct ConsistencyFigureData {
   double band_hi = 0.0;
   std::vector<double> position_rmse_m;
   std::vector<double> heading_rmse_rad;
+  int width_px = 1200;
+  int height_px = 1000;
 };
 
+// Each series is either empty (not drawn) or as long as `t_s`, else std::invalid_argument.
+// Formats and failures as for WritePathFigure.
 void WriteConsistencyFigure(const std::filesystem::path& path, const ConsistencyFigureData& data);
+
+// `points` points on the `sigma`-sigma contour of N(mean, cov), {mean + sigma L u : |u| = 1} with
+// L Lᵀ = cov, evenly spaced in the angle of u; the first lies on the positive major semi-axis.
+// The polyline is not closed (the caller repeats the first point). Negative eigenvalues of a
+// slightly indefinite `cov` are treated as zero.
+std::vector<Eigen::Vector2d> CovarianceEllipse(const Eigen::Vector2d& mean,
+                                               const Eigen::Matrix2d& cov, double sigma,
+                                               int points = 36);
 
 }  // namespace slamkit
