@@ -1,0 +1,134 @@
+// `slamkit mc` and `slamkit demo`: Monte Carlo EKF-SLAM on a simulated scenario.
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "slamkit/core/angle.hpp"
+#include "slamkit/eval/outputs.hpp"
+#include "slamkit/io/scenario_config.hpp"
+#include "slamkit/report/figures.hpp"
+
+namespace slamkit::app {
+namespace {
+
+struct McOptions {
+  std::string config;
+  int runs = 50;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  std::string out;
+  bool no_figures = false;
+  bool unknown_association = false;
+  bool known_association = false;
+};
+
+void PrintSummary(const ScenarioParams& scenario, const MonteCarloResult& mc) {
+  const AssociationScore& a = mc.association;
+  fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association\n", scenario.name,
+             mc.runs.size(), mc.t_s.size(), mc.world.landmarks.size(),
+             scenario.ekf.known_association ? "known" : "nearest-neighbour");
+  fmt::print("  {:<28}{:>14}\n", "position RMSE [m]", fmt::format("{:.4f}", mc.rmse.position_m));
+  fmt::print("  {:<28}{:>14}\n", "heading RMSE [deg]",
+             fmt::format("{:.4f}", RadToDeg(mc.rmse.heading_rad)));
+  fmt::print("  {:<28}{:>14}   95% band [{:.3f}, {:.3f}], {:.0f}% of steps inside\n", "ANEES",
+             fmt::format("{:.3f}", mc.anees_mean), mc.band.lo, mc.band.hi,
+             100.0 * mc.anees_fraction_in_band);
+  fmt::print("  {:<28}{:>14}\n", "landmarks mapped (mean)",
+             fmt::format("{:.1f}", mc.landmarks_mapped_mean));
+  if (!scenario.ekf.known_association) {
+    fmt::print("  {:<28}{:>14}\n", "association precision", fmt::format("{:.4f}", a.Precision()));
+    fmt::print("  {:<28}{:>14}\n", "association recall", fmt::format("{:.4f}", a.Recall()));
+  }
+  fmt::print("  {:<28}{:>14}\n", "step time mean [ms]",
+             fmt::format("{:.4f}", 1e3 * mc.step_time_mean_s));
+  fmt::print("  {:<28}{:>14}\n", "step time max [ms]",
+             fmt::format("{:.4f}", 1e3 * mc.step_time_max_s));
+}
+
+void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenario,
+                  const MonteCarloResult& mc) {
+  PathFigureData path;
+  path.title = fmt::format("{}: run 0", scenario.name);
+  path.truth = mc.runs.front().truth;
+  path.estimate = mc.runs.front().estimate;
+  path.true_landmarks = mc.world;
+  path.map = mc.runs.front().map;
+  WritePathFigure(dir / "map.png", path);
+
+  ConsistencyFigureData consistency;
+  consistency.title = fmt::format("{}: {} Monte Carlo runs", scenario.name, mc.runs.size());
+  consistency.t_s = mc.t_s;
+  consistency.anees = mc.anees;
+  consistency.band_lo = mc.band.lo;
+  consistency.band_hi = mc.band.hi;
+  consistency.position_rmse_m = mc.position_rmse_m;
+  consistency.heading_rmse_rad = mc.heading_rmse_rad;
+  WriteConsistencyFigure(dir / "consistency.png", consistency);
+}
+
+int RunMonteCarloCommand(const McOptions& options) {
+  ScenarioParams scenario = LoadScenario(options.config);
+  if (options.known_association) scenario.ekf.known_association = true;
+  if (options.unknown_association) scenario.ekf.known_association = false;
+  MonteCarloParams params;
+  params.runs = options.runs;
+  params.seed = options.seed;
+  params.threads = options.threads;
+  auto progress = std::make_shared<Progress>("runs", options.runs);
+  params.progress = [progress](int done, int total) {
+    (void)total;
+    progress->Update(done);
+  };
+  const MonteCarloResult mc = RunMonteCarlo(scenario, params);
+  const std::filesystem::path dir(options.out);
+  WriteMonteCarloOutputs(dir, MonteCarloMetrics(scenario, params, mc), mc);
+  if (!options.no_figures) WriteFigures(dir, scenario, mc);
+  PrintSummary(scenario, mc);
+  fmt::print("wrote {}\n", dir.string());
+  return 0;
+}
+
+void AddCommonOptions(CLI::App& cmd, McOptions& o) {
+  cmd.add_option("--runs", o.runs, "Monte Carlo runs")->check(CLI::Range(1, 100000));
+  cmd.add_option("--seed", o.seed, "master seed: run k uses stream k of it");
+  cmd.add_option("--threads", o.threads, "worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024));
+  cmd.add_flag("--no-figures", o.no_figures, "skip the PNG figures");
+  cmd.add_flag("--known-association", o.known_association, "use the simulator's landmark ids");
+  cmd.add_flag("--unknown-association", o.unknown_association,
+               "nearest-neighbour association (overrides the config)");
+}
+
+}  // namespace
+
+void RegisterMonteCarlo(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<McOptions>();
+  CLI::App* cmd = app.add_subcommand("mc", "Monte Carlo EKF-SLAM runs on a simulated scenario");
+  cmd->add_option("--config", options->config, "scenario YAML file (see docs/scenario.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", options->out, "output directory")->required();
+  AddCommonOptions(*cmd, *options);
+  cmd->callback([options, &exit_code] { exit_code = RunMonteCarloCommand(*options); });
+}
+
+void RegisterDemo(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<McOptions>();
+  options->config = std::string(SLAMKIT_SOURCE_DIR) + "/configs/default.yaml";
+  options->out = "out/demo";
+  options->runs = 20;
+  CLI::App* cmd = app.add_subcommand(
+      "demo", "the default demo: a car-like robot mapping a landmark world (SPEC S2)");
+  cmd->add_option("--config", options->config, "scenario YAML file")
+      ->capture_default_str()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", options->out, "output directory")->capture_default_str();
+  AddCommonOptions(*cmd, *options);
+  cmd->callback([options, &exit_code] { exit_code = RunMonteCarloCommand(*options); });
+}
+
+}  // namespace slamkit::app

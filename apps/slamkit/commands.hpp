@@ -1,0 +1,13 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace slamkit::app {
+
+// Each Register* adds one subcommand to `app`; its callback runs the command and stores the
+// exit code in `exit_code`.
+void RegisterMonteCarlo(CLI::App& app, int& exit_code);
+void RegisterDemo(CLI::App& app, int& exit_code);
+void RegisterRun(CLI::App& app, int& exit_code);
+
+}  // namespace slamkit::app

@@ -1,0 +1,20 @@
+#pragma once
+
+#include <string>
+
+namespace slamkit::app {
+
+// A progress line on stderr: redrawn in place on a terminal, one line per 10 % otherwise (logs).
+class Progress {
+ public:
+  Progress(std::string label, int total);
+  void Update(int done);
+
+ private:
+  std::string label_;
+  int total_;
+  bool tty_;
+  int last_decile_ = -1;
+};
+
+}  // namespace slamkit::app

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slamkit/core/ids.hpp"
+#include "slamkit/filters/data_association.hpp"
+
+namespace slamkit {
+
+// Normalised estimation error squared eᵀ C⁻¹ e of a pose error (dx, dy, wrapped dθ).
+double Nees(const Eigen::Vector3d& error, const Eigen::Matrix3d& covariance);
+
+// Root mean square of the position part and of the heading part of pose errors.
+struct PoseRmse {
+  double position_m = 0.0;
+  double heading_rad = 0.0;
+};
+PoseRmse ComputePoseRmse(std::span<const Eigen::Vector3d> errors);
+
+// How nearest-neighbour association did against the truth carried by the observations.
+// A sighting is matchable when its true landmark was already in the map; a match is correct when
+// the landmark it matched was created from a sighting of the same true landmark.
+struct AssociationScore {
+  int sightings = 0;
+  int matched = 0;
+  int correct = 0;
+  int matchable = 0;
+  int created = 0;
+  int dropped = 0;
+  double Precision() const { return matched > 0 ? double(correct) / matched : 1.0; }
+  double Recall() const { return matchable > 0 ? double(correct) / matchable : 1.0; }
+};
+
+// Accumulates AssociationScore one decision at a time, in filter order.
+class AssociationScorer {
+ public:
+  // `true_id` is the sighting's true landmark; `matched_source` the true id of the landmark it
+  // was matched to (ignored unless the decision is a match).
+  void Add(LandmarkId true_id, const AssociationDecision& decision, LandmarkId matched_source);
+  const AssociationScore& score() const { return score_; }
+
+ private:
+  AssociationScore score_;
+  std::vector<LandmarkId> mapped_ids_;  // sorted
+};
+
+}  // namespace slamkit

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "slamkit/eval/isam_run.hpp"
+#include "slamkit/eval/monte_carlo.hpp"
+
+namespace slamkit {
+
+// metrics.json of a Monte Carlo experiment (the output contract in README.md): summary keys,
+// then the same per run under `per_run`. Timing keys (`step_time_*`) are the only ones that vary
+// between two runs with the same seed.
+nlohmann::json MonteCarloMetrics(const ScenarioParams& scenario, const MonteCarloParams& params,
+                                  const MonteCarloResult& result);
+
+// Writes DIR/metrics.json, DIR/world.csv, DIR/consistency.csv (t, ANEES, RMSEs per step) and
+// DIR/run_<k>/{estimate.tum, truth.tum, map.csv, errors.csv} for every run, each file atomically.
+void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,
+                            const MonteCarloResult& result);
+
+// metrics.json of an iSAM-log run: association_agreement, landmarks_mapped, wall_time_s, ...
+nlohmann::json IsamMetrics(const IsamRunResult& result, const IsamRunParams& params);
+
+// Writes DIR/metrics.json, DIR/estimate.tum and DIR/map.csv.
+void WriteIsamOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,
+                      const IsamRunResult& result);
+
+}  // namespace slamkit

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages slamkit needs (only those missing) and builds it.
+# Usage: scripts/setup.sh [release|asan]   (default: release). Idempotent and quick when done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(g++ cmake ninja-build pkg-config libeigen3-dev libgtest-dev libgmock-dev
+          libbenchmark-dev libcli11-dev libyaml-cpp-dev libfmt-dev libspdlog-dev
+          nlohmann-json3-dev libtbb-dev libboost-dev libboost-math-dev libboost-iostreams-dev
+          zlib1g-dev libpng-dev libmgl-dev time)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}"
+fi
+
+flavour=${1:-release}
+case "$flavour" in
+  release) args=(-DCMAKE_BUILD_TYPE=Release) ;;
+  asan) args=(-DCMAKE_BUILD_TYPE=Debug -DSLAMKIT_SANITIZE=ON -DSLAMKIT_BUILD_BENCH=OFF) ;;
+  *) echo "setup: unknown build '$flavour' (release|asan)" >&2; exit 2 ;;
+esac
+build=build/$flavour
+if [ ! -f "$build/build.ninja" ]; then
+  cmake -S . -B "$build" -G Ninja "${args[@]}"
+fi
+cmake --build "$build" -j "$(nproc)"
