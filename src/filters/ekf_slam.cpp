@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
+#include <tbb/parallel_for.h>
 
 namespace slamkit {
 namespace {
@@ -31,6 +32,8 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   const int capacity = 3 + 2 * std::max(params_.initial_landmark_capacity, 1);
   x_ = Eigen::VectorXd::Zero(capacity);
   P_ = Eigen::MatrixXd::Zero(capacity, capacity);
+  U_ = Eigen::MatrixXd::Zero(capacity, 8);
+  m_ = 0;
   n_ = 3;
   x_.head<3>() = pose.vector();
   P_.topLeftCorner<3, 3>() = pose_cov;
@@ -41,7 +44,9 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
 void EkfSlam::Reserve(int state_size) {
   const int capacity = static_cast<int>(x_.size());
   if (state_size <= capacity) return;
+  ApplyDeferredDowndate();  // growth is rare (doubling): simpler than carrying U over
   const int grown = std::max(state_size, 2 * capacity);
+  U_ = Eigen::MatrixXd::Zero(grown, U_.cols());
   Eigen::VectorXd x = Eigen::VectorXd::Zero(grown);
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(grown, grown);
   x.head(n_) = x_.head(n_);
@@ -66,23 +71,53 @@ void EkfSlam::Predict(const Control& u, double dt_s, const ControlCovariance* co
   x_.head<3>() = moved.vector();
 }
 
-Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic> EkfSlam::SymmetricColumns(int c,
-                                                                                int k) const {
+Eigen::MatrixXd EkfSlam::CurrentColumns(int c, int k) const {
   Eigen::MatrixXd cols(n_, k);
   cols.topRows(c) = P_.block(0, c, c, k);
   cols.middleRows(c, k) = P_.block(c, c, k, k).selfadjointView<Eigen::Upper>();
   const int below = n_ - c - k;
   cols.bottomRows(below) = P_.block(c, c + k, k, below).transpose();
+  if (m_ > 0) {
+    cols.noalias() -= U_.topLeftCorner(n_, m_) * U_.block(c, 0, k, m_).transpose();
+  }
   return cols;
+}
+
+// Blocks read here lie on or above the diagonal (r <= c), where the stored triangle is valid.
+template <int R, int C>
+Eigen::Matrix<double, R, C> EkfSlam::CurrentBlock(int r, int c) const {
+  Eigen::Matrix<double, R, C> block = P_.block<R, C>(r, c);
+  if constexpr (R == C) {
+    if (r == c) block = P_.block<R, C>(r, c).template selfadjointView<Eigen::Upper>();
+  }
+  if (m_ > 0) {
+    block.noalias() -= U_.block(r, 0, R, m_) * U_.block(c, 0, C, m_).transpose();
+  }
+  return block;
+}
+
+void EkfSlam::ApplyDeferredDowndate() {
+  if (m_ == 0) return;
+  // Fixed blocks, whatever the thread count, so the sums and hence the bits never change.
+  constexpr int kBlock = 128;
+  const auto U = U_.topLeftCorner(n_, m_);
+  const int blocks = (n_ + kBlock - 1) / kBlock;
+  tbb::parallel_for(0, blocks, [&](int b) {
+    const int j0 = b * kBlock, w = std::min(kBlock, n_ - j0);
+    const auto U_j = U.middleRows(j0, w);
+    P_.block(0, j0, j0, w).noalias() -= U.topRows(j0) * U_j.transpose();
+    P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= U_j * U_j.transpose();
+  });
+  m_ = 0;
 }
 
 Eigen::Matrix2d EkfSlam::InnovationCovariance(int landmark, const Eigen::Matrix<double, 2, 3>& H_x,
                                               const Eigen::Matrix2d& H_l,
                                               const Eigen::Matrix2d& R) const {
   const int c = Offset(landmark);
-  const Eigen::Matrix3d P_vv = P_.topLeftCorner<3, 3>().selfadjointView<Eigen::Upper>();
-  const Eigen::Matrix<double, 3, 2> P_vl = P_.block<3, 2>(0, c);
-  const Eigen::Matrix2d P_ll = P_.block<2, 2>(c, c).selfadjointView<Eigen::Upper>();
+  const Eigen::Matrix3d P_vv = CurrentBlock<3, 3>(0, 0);
+  const Eigen::Matrix<double, 3, 2> P_vl = CurrentBlock<3, 2>(0, c);
+  const Eigen::Matrix2d P_ll = CurrentBlock<2, 2>(c, c);
   const Eigen::Matrix2d cross = H_x * P_vl * H_l.transpose();
   return H_x * P_vv * H_x.transpose() + cross + cross.transpose() +
          H_l * P_ll * H_l.transpose() + R;
@@ -100,25 +135,27 @@ double EkfSlam::MahalanobisDistance(int landmark, const PointObservation& obs) c
 // SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time). H is zero except
 // for the pose and this landmark's columns, so P Hᵀ costs O(n) and the covariance update is the
 // symmetric rank-2 downdate P ← P − (P Hᵀ L⁻ᵀ)(P Hᵀ L⁻ᵀ)ᵀ with S = L Lᵀ, O(n²) on one triangle.
-void EkfSlam::UpdateLandmark(int landmark, const PointObservation& obs) {
+void EkfSlam::UpdateLandmarkDeferred(int landmark, const PointObservation& obs) {
   const int c = Offset(landmark);
   Eigen::Matrix<double, 2, 3> H_x;
   Eigen::Matrix2d H_l;
   const Eigen::Vector2d z_pred = sensor_->Predict(pose(), LandmarkPosition(landmark), &H_x, &H_l);
   const Eigen::Vector2d nu = sensor_->Innovation(obs.z, z_pred);
 
-  Eigen::Matrix<double, Eigen::Dynamic, 2> PHt =
-      SymmetricColumns(0, 3) * H_x.transpose() + SymmetricColumns(c, 2) * H_l.transpose();
+  const Eigen::Matrix<double, Eigen::Dynamic, 2> PHt =
+      CurrentColumns(0, 3) * H_x.transpose() + CurrentColumns(c, 2) * H_l.transpose();
   const Eigen::Matrix2d S = H_x * PHt.topRows<3>() + H_l * PHt.middleRows<2>(c) + obs.R;
   const Eigen::LLT<Eigen::Matrix2d> llt(S);
   if (llt.info() != Eigen::Success) return;  // S is never singular for R > 0; guard anyway
   // V = P Hᵀ L⁻ᵀ, so K ν = V L⁻¹ ν and K S Kᵀ = V Vᵀ.
   const Eigen::Matrix2d L_inv_t =
       llt.matrixL().solve(Eigen::Matrix2d::Identity()).transpose();
-  const Eigen::Matrix<double, Eigen::Dynamic, 2> V = PHt * L_inv_t;
+  if (m_ + 2 > U_.cols()) U_.conservativeResize(Eigen::NoChange, 2 * U_.cols());
+  auto V = U_.block(0, m_, n_, 2);
+  V.noalias() = PHt * L_inv_t;
   x_.head(n_) += V * (L_inv_t.transpose() * nu);
   x_[2] = WrapAngle(x_[2]);
-  P_.topLeftCorner(n_, n_).selfadjointView<Eigen::Upper>().rankUpdate(V, -1.0);
+  m_ += 2;
 }
 
 // SPEC S2, Eq. 8: the new landmark's mean from the inverse model; its covariance and cross terms
@@ -128,10 +165,13 @@ int EkfSlam::AddLandmark(const PointObservation& obs) {
   Eigen::Matrix2d G_z;
   const Eigen::Vector2d l = sensor_->Invert(pose(), obs.z, &G_x, &G_z);
   Reserve(n_ + 2);
-  const Eigen::MatrixXd P_xv = SymmetricColumns(0, 3);  // n×3
+  const Eigen::MatrixXd P_xv = CurrentColumns(0, 3);  // n×3
   const Eigen::Matrix3d P_vv = P_xv.topRows<3>();
+  // The stored block holds the current cross-covariance and the new rows of U are zero, so the
+  // deferred correction leaves it untouched.
   P_.block(0, n_, n_, 2) = P_xv * G_x.transpose();
   P_.block<2, 2>(n_, n_) = G_x * P_vv * G_x.transpose() + G_z * obs.R * G_z.transpose();
+  U_.block(n_, 0, 2, m_).setZero();
   x_.segment<2>(n_) = l;
   n_ += 2;
   const int index = NumLandmarks();
@@ -177,13 +217,14 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
     AssociationDecision d = params_.known_association ? AssociateKnown(obs)
                                                       : AssociateNearest(obs, used);
     if (d.kind == AssociationDecision::Kind::kMatched) {
-      UpdateLandmark(d.landmark, obs);
+      UpdateLandmarkDeferred(d.landmark, obs);
     } else if (d.kind == AssociationDecision::Kind::kNew) {
       d.landmark = AddLandmark(obs);
     }
     if (d.landmark >= 0) used[d.landmark] = 1;
     decisions.push_back(d);
   }
+  ApplyDeferredDowndate();
   return decisions;
 }
 

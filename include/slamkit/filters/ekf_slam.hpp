@@ -31,8 +31,14 @@ struct EkfSlamParams {
 // EKF-SLAM on an augmented state x = [x_v, m_1 … m_N] with point landmarks (SPEC S1 item 1, S2).
 //
 // Only the upper triangle of the covariance is stored and updated: prediction touches the pose
-// rows (O(n)), each observation's sequential update is one symmetric rank-2 update of that
+// rows (O(n)), each observation's sequential update is a symmetric rank-2 downdate of that
 // triangle (O(n²)), and augmentation appends two columns (O(n)).
+//
+// Within one Update() the rank-2 downdates of its observations are deferred: the covariance is
+// kept as P₀ − U Uᵀ, each observation reads the few columns it needs through that correction
+// (O(n·m)) and appends its two columns to U, and the whole step's downdate P₀ − U Uᵀ is applied
+// in one pass over the triangle at the end. The result is the sequential EKF's (each observation
+// is linearised at the mean its predecessors left) with one pass over memory instead of m.
 class EkfSlam {
  public:
   EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motion,
@@ -50,7 +56,10 @@ class EkfSlam {
   std::vector<AssociationDecision> Update(std::span<const PointObservation> observations);
 
   // One sequential update of landmark `landmark` with `obs` (Table 10.2, one innovation).
-  void UpdateLandmark(int landmark, const PointObservation& obs);
+  void UpdateLandmark(int landmark, const PointObservation& obs) {
+    UpdateLandmarkDeferred(landmark, obs);
+    ApplyDeferredDowndate();
+  }
   // Adds a landmark initialised from `obs` by the inverse sensor model (SPEC S2, Eq. 8).
   int AddLandmark(const PointObservation& obs);
   // Squared Mahalanobis distance of `obs` from landmark `landmark`'s predicted measurement.
@@ -73,8 +82,14 @@ class EkfSlam {
 
  private:
   static int Offset(int landmark) { return 3 + 2 * landmark; }
-  // Columns [c, c+k) of the symmetric covariance, gathered from the stored upper triangle.
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic> SymmetricColumns(int c, int k) const;
+  // Columns [c, c+k) of the current covariance P₀ − U Uᵀ, gathered from the stored triangle.
+  Eigen::MatrixXd CurrentColumns(int c, int k) const;
+  // A small block of the current covariance: rows [r, r+R), columns [c, c+C).
+  template <int R, int C>
+  Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
+  void UpdateLandmarkDeferred(int landmark, const PointObservation& obs);
+  // P₀ ← P₀ − U Uᵀ on the upper triangle, in fixed column blocks run in parallel.
+  void ApplyDeferredDowndate();
   Eigen::Matrix2d InnovationCovariance(int landmark, const Eigen::Matrix<double, 2, 3>& H_x,
                                        const Eigen::Matrix2d& H_l, const Eigen::Matrix2d& R) const;
   AssociationDecision AssociateNearest(const PointObservation& obs,
@@ -89,6 +104,8 @@ class EkfSlam {
   int n_ = 3;
   Eigen::VectorXd x_;  // capacity-sized; the first n_ entries are the state
   Eigen::MatrixXd P_;  // capacity-sized; upper triangle of the leading n_×n_ block is valid
+  Eigen::MatrixXd U_;  // capacity rows; the first m_ columns are the deferred downdate factor
+  int m_ = 0;
   std::vector<LandmarkId> source_ids_;
   std::unordered_map<LandmarkId, int> index_of_id_;
   mutable std::vector<AssociationCandidate> candidates_;  // scratch, reused across calls

@@ -1,0 +1,112 @@
+// The shipped configs do what their comments and docs/scenario.md promise.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "slamkit/core/angle.hpp"
+#include "slamkit/io/scenario_config.hpp"
+
+namespace slamkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+ScenarioParams Load(const char* name) {
+  return LoadScenario(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / name);
+}
+
+int SensorSteps(const SimRun& run) {
+  return static_cast<int>(std::count_if(run.steps.begin(), run.steps.end(),
+                                        [](const SimStep& s) { return !s.observations.empty(); }));
+}
+
+// The closest the true trajectory came to each waypoint.
+std::vector<double> ClosestApproach(const SimRun& run, const RouteParams& route) {
+  std::vector<double> closest(route.waypoints_m.size(), 1e9);
+  for (const SimStep& step : run.steps) {
+    for (std::size_t w = 0; w < closest.size(); ++w) {
+      closest[w] =
+          std::min(closest[w], (route.waypoints_m[w] - step.true_pose.translation()).norm());
+    }
+  }
+  return closest;
+}
+
+double MinSpacing(const LandmarkWorld& world) {
+  double spacing = 1e9;
+  for (std::size_t i = 0; i < world.landmarks.size(); ++i) {
+    for (std::size_t j = i + 1; j < world.landmarks.size(); ++j) {
+      spacing =
+          std::min(spacing, (world.landmarks[i].position_m - world.landmarks[j].position_m).norm());
+    }
+  }
+  return spacing;
+}
+
+TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
+  const ScenarioParams s = Load("default.yaml");
+  EXPECT_EQ(s.vehicle.kind, MotionKind::kCarLike);
+  EXPECT_EQ(s.vehicle.car_like.wheelbase_m, 4.0);
+  EXPECT_EQ(s.dt_s, 0.025);
+  EXPECT_EQ(s.sensor_period_steps, 8);
+  EXPECT_DOUBLE_EQ(s.sensor.fov_rad, DegToRad(180.0));
+  EXPECT_DOUBLE_EQ(s.sensor.sigma_bearing_rad, DegToRad(1.0));
+  EXPECT_FALSE(s.ekf.known_association);
+  const LandmarkWorld world = MakeWorld(s.world);
+  EXPECT_GE(world.landmarks.size(), 60u);
+  EXPECT_LE(world.landmarks.size(), 100u);
+  Rng rng(1);
+  const SimRun run = Simulate(s, world, rng);
+  EXPECT_LT(run.steps.size(), 5000u);
+  for (double d : ClosestApproach(run, s.route)) EXPECT_LE(d, s.route.switch_distance_m);
+  EXPECT_LE((run.steps.back().true_pose.translation() - s.route.waypoints_m[0]).norm(),
+            s.route.switch_distance_m);
+  EXPECT_GT(SensorSteps(run), 400);
+}
+
+TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
+  const ScenarioParams s = Load("square_400.yaml");
+  EXPECT_EQ(s.vehicle.kind, MotionKind::kOdometry);
+  EXPECT_TRUE(s.ekf.known_association);
+  const LandmarkWorld world = MakeWorld(s.world);
+  ASSERT_EQ(world.landmarks.size(), 400u);
+  for (const Landmark& l : world.landmarks) {
+    EXPECT_TRUE((l.position_m.array() >= -5.0).all() && (l.position_m.array() <= 25.0).all());
+  }
+  Rng rng(1);
+  const SimRun run = Simulate(s, world, rng);
+  EXPECT_EQ(run.steps.size(), 1000u);
+  EXPECT_EQ(SensorSteps(run), 1000);
+  // One lap: every corner reached, and back at the start after the last one.
+  const std::vector<double> closest = ClosestApproach(run, s.route);
+  for (double d : closest) EXPECT_LE(d, s.route.switch_distance_m);
+  const auto back_home =
+      std::find_if(run.steps.begin() + 700, run.steps.end(), [&](const SimStep& st) {
+        return st.true_pose.translation().norm() <= s.route.switch_distance_m;
+      });
+  EXPECT_NE(back_home, run.steps.end());
+}
+
+TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
+  const ScenarioParams s = Load("short.yaml");
+  EXPECT_TRUE(s.ekf.known_association);
+  const LandmarkWorld world = MakeWorld(s.world);
+  EXPECT_EQ(world.landmarks.size(), 30u);
+  EXPECT_GT(MinSpacing(world), 5.0);
+  Rng rng(1);
+  const SimRun run = Simulate(s, world, rng);
+  EXPECT_LT(run.steps.size(), 1500u);
+  EXPECT_GE(SensorSteps(run), 130);
+  EXPECT_LE(SensorSteps(run), 170);
+  for (double d : ClosestApproach(run, s.route)) EXPECT_LE(d, s.route.switch_distance_m);
+  // The route keeps clear of the landmarks (no near-zero ranges).
+  for (const SimStep& step : run.steps) {
+    for (const Landmark& l : world.landmarks) {
+      EXPECT_GT((l.position_m - step.true_pose.translation()).norm(), 4.0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace slamkit
