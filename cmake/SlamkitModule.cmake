@@ -9,7 +9,7 @@ function(slamkit_target_options target)
       # GCC 12 reports these inside Eigen's AVX packet code on fixed-size objects (false
       # positives: the ASan/UBSan build checks the same code at run time).
       target_compile_options(${target} PRIVATE -Wno-array-bounds -Wno-maybe-uninitialized
-                                               -Wno-stringop-overflow)
+                                               -Wno-stringop-overflow -Wno-stringop-overread)
     endif()
   endif()
   if(SLAMKIT_SANITIZE)

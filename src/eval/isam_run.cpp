@@ -1,7 +1,9 @@
 #include "slamkit/eval/isam_run.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <map>
+#include <set>
 
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/relative_point.hpp"
@@ -9,19 +11,27 @@
 namespace slamkit {
 namespace {
 
-// Majority vote: each of our landmarks stands for the file id most of its sightings carry; the
-// agreement is the share of all sightings whose landmark stands for their own file id.
+// One-to-one matching of our landmarks to the file's ids, greedily by the number of sightings
+// they share (largest first); the agreement is the share of all sightings that fall on matched
+// pairs. A file landmark split into two of ours, or two merged into one, loses the smaller part.
 double AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
                             int sightings) {
-  std::map<int, std::map<LandmarkId, int>> votes;
-  for (const auto& [ours, theirs] : assigned) {
-    if (ours >= 0) ++votes[ours][theirs];
+  std::map<std::pair<int, LandmarkId>, int> shared;
+  for (const auto& pair : assigned) {
+    if (pair.first >= 0) ++shared[pair];
   }
+  std::vector<std::pair<int, std::pair<int, LandmarkId>>> by_count;
+  for (const auto& [pair, count] : shared) by_count.push_back({count, pair});
+  std::stable_sort(by_count.begin(), by_count.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::set<int> ours_taken;
+  std::set<LandmarkId> theirs_taken;
   int agree = 0;
-  for (const auto& [ours, counts] : votes) {
-    int best = 0;
-    for (const auto& [theirs, count] : counts) best = std::max(best, count);
-    agree += best;
+  for (const auto& [count, pair] : by_count) {
+    if (ours_taken.count(pair.first) || theirs_taken.count(pair.second)) continue;
+    ours_taken.insert(pair.first);
+    theirs_taken.insert(pair.second);
+    agree += count;
   }
   return sightings > 0 ? double(agree) / double(sightings) : 1.0;
 }

@@ -23,8 +23,8 @@ struct IsamRunResult {
   LandmarkMap map;
   int sightings = 0;
   int dropped = 0;
-  // Share of sightings whose landmark is the one the file names, after matching each of our
-  // landmarks to the file id most of its sightings carry.
+  // Share of sightings whose landmark is the one the file names, after matching our landmarks
+  // one-to-one to the file's ids (greedily, by the number of sightings each pair shares).
   double association_agreement = 0.0;
   double wall_time_s = 0.0;
 };
