@@ -9,10 +9,12 @@
 #include <cstdint>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include <Eigen/Core>
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
 
 #include "slamkit/core/rng.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
@@ -53,6 +55,7 @@ PointObservation NoisySighting(const RangeBearingModel& sensor, const Pose2& pos
 std::unique_ptr<EkfSlam> MakeMappedFilter(int landmarks, std::vector<PointObservation>* sightings) {
   const RangeBearingModel sensor;
   EkfSlamParams params;
+  params.known_association = true;  // BM_EkfStep* pass sightings through Update()
   params.initial_landmark_capacity = landmarks;  // covariance stride = n, as in the references
   auto slam = std::make_unique<EkfSlam>(params, std::make_unique<OdometryModel>(),
                                         std::make_unique<RangeBearingModel>(sensor));
@@ -70,8 +73,11 @@ std::unique_ptr<EkfSlam> MakeMappedFilter(int landmarks, std::vector<PointObserv
   return slam;
 }
 
+// Second argument: worker threads for the covariance downdate (the references use one).
 void BM_EkfSequentialUpdate(benchmark::State& state) {
   const int landmarks = static_cast<int>(state.range(0));
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(state.range(1)));
   std::vector<PointObservation> sightings;
   const std::unique_ptr<EkfSlam> slam = MakeMappedFilter(landmarks, &sightings);
   int next = 0;
@@ -84,6 +90,33 @@ void BM_EkfSequentialUpdate(benchmark::State& state) {
     state.SkipWithError("EKF state became non-finite");
   }
   SetCounters(state, landmarks);
+}
+
+// One filter step of `kStepSightings` sightings: through Update(), which defers the downdates and
+// applies them in one pass, or as that many single UpdateLandmark calls (one pass each). One
+// thread, so the ratio shows the memory-traffic saving alone.
+constexpr int kStepSightings = 25;
+
+template <bool kDeferred>
+void BM_EkfStep(benchmark::State& state) {
+  const int landmarks = static_cast<int>(state.range(0));
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
+  std::vector<PointObservation> sightings;
+  const std::unique_ptr<EkfSlam> slam = MakeMappedFilter(landmarks, &sightings);
+  int first = 0;
+  for (auto _ : state) {
+    const std::span<const PointObservation> step(sightings.data() + first, kStepSightings);
+    if constexpr (kDeferred) {
+      benchmark::DoNotOptimize(slam->Update(step));
+    } else {
+      for (const PointObservation& obs : step) slam->UpdateLandmark(static_cast<int>(obs.id), obs);
+    }
+    benchmark::ClobberMemory();
+    first = first + 2 * kStepSightings > landmarks ? 0 : first + kStepSightings;
+  }
+  if (!slam->State().allFinite()) state.SkipWithError("EKF state became non-finite");
+  state.SetItemsProcessed(state.iterations() * kStepSightings);
+  state.counters["N"] = landmarks;
 }
 
 struct Rank2Operands {
@@ -148,7 +181,19 @@ void LandmarkCounts(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMicrosecond);
 }
 
-BENCHMARK(BM_EkfSequentialUpdate)->Apply(LandmarkCounts);
+void LandmarkCountsAndThreads(benchmark::internal::Benchmark* b) {
+  b->ArgsProduct({{50, 100, 200, 500, 1000, 2000}, {1, 2}});
+  b->Unit(benchmark::kMicrosecond);
+}
+
+void StepLandmarkCounts(benchmark::internal::Benchmark* b) {
+  for (const int landmarks : {100, 500, 1000, 2000}) b->Arg(landmarks);
+  b->Unit(benchmark::kMicrosecond);
+}
+
+BENCHMARK(BM_EkfSequentialUpdate)->Apply(LandmarkCountsAndThreads);
+BENCHMARK_TEMPLATE(BM_EkfStep, true)->Name("BM_EkfStepDeferred")->Apply(StepLandmarkCounts);
+BENCHMARK_TEMPLATE(BM_EkfStep, false)->Name("BM_EkfStepOneByOne")->Apply(StepLandmarkCounts);
 BENCHMARK(BM_ReferenceRank2Triangle)->Apply(LandmarkCounts);
 BENCHMARK(BM_ReferenceRank2Full)->Apply(LandmarkCounts);
 
