@@ -33,6 +33,7 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   x_ = Eigen::VectorXd::Zero(capacity);
   P_ = Eigen::MatrixXd::Zero(capacity, capacity);
   U_ = Eigen::MatrixXd::Zero(capacity, 8);
+  pose_cols_ = Eigen::MatrixXd::Zero(capacity, 3);
   m_ = 0;
   n_ = 3;
   x_.head<3>() = pose.vector();
@@ -47,6 +48,7 @@ void EkfSlam::Reserve(int state_size) {
   ApplyDeferredDowndate();  // growth is rare (doubling): simpler than carrying U over
   const int grown = std::max(state_size, 2 * capacity);
   U_ = Eigen::MatrixXd::Zero(grown, U_.cols());
+  pose_cols_ = Eigen::MatrixXd::Zero(grown, 3);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(grown);
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(grown, grown);
   x.head(n_) = x_.head(n_);
@@ -78,9 +80,17 @@ Eigen::MatrixXd EkfSlam::CurrentColumns(int c, int k) const {
   const int below = n_ - c - k;
   cols.bottomRows(below) = P_.block(c, c + k, k, below).transpose();
   if (m_ > 0) {
-    cols.noalias() -= U_.topLeftCorner(n_, m_) * U_.block(c, 0, k, m_).transpose();
+    // Column by column (axpy over n): a GEMM call would repack all of U for these k columns.
+    for (int j = 0; j < m_; ++j) {
+      const auto u = U_.col(j).head(n_);
+      for (int q = 0; q < k; ++q) cols.col(q) -= U_(c + q, j) * u;
+    }
   }
   return cols;
+}
+
+Eigen::MatrixXd EkfSlam::CurrentPoseColumns() const {
+  return m_ > 0 ? Eigen::MatrixXd(pose_cols_.topRows(n_)) : CurrentColumns(0, 3);
 }
 
 // Blocks read here lie on or above the diagonal (r <= c), where the stored triangle is valid.
@@ -142,8 +152,9 @@ void EkfSlam::UpdateLandmarkDeferred(int landmark, const PointObservation& obs) 
   const Eigen::Vector2d z_pred = sensor_->Predict(pose(), LandmarkPosition(landmark), &H_x, &H_l);
   const Eigen::Vector2d nu = sensor_->Innovation(obs.z, z_pred);
 
+  const Eigen::MatrixXd P_x = CurrentPoseColumns();
   const Eigen::Matrix<double, Eigen::Dynamic, 2> PHt =
-      CurrentColumns(0, 3) * H_x.transpose() + CurrentColumns(c, 2) * H_l.transpose();
+      P_x * H_x.transpose() + CurrentColumns(c, 2) * H_l.transpose();
   const Eigen::Matrix2d S = H_x * PHt.topRows<3>() + H_l * PHt.middleRows<2>(c) + obs.R;
   const Eigen::LLT<Eigen::Matrix2d> llt(S);
   if (llt.info() != Eigen::Success) return;  // S is never singular for R > 0; guard anyway
@@ -155,6 +166,10 @@ void EkfSlam::UpdateLandmarkDeferred(int landmark, const PointObservation& obs) 
   V.noalias() = PHt * L_inv_t;
   x_.head(n_) += V * (L_inv_t.transpose() * nu);
   x_[2] = WrapAngle(x_[2]);
+  // Every observation needs the pose columns: keep them current in O(n) rather than correcting
+  // them through all of U each time.
+  if (m_ == 0) pose_cols_.topRows(n_) = P_x;
+  pose_cols_.topRows(n_).noalias() -= V * V.topRows<3>().transpose();
   m_ += 2;
 }
 
@@ -165,13 +180,14 @@ int EkfSlam::AddLandmark(const PointObservation& obs) {
   Eigen::Matrix2d G_z;
   const Eigen::Vector2d l = sensor_->Invert(pose(), obs.z, &G_x, &G_z);
   Reserve(n_ + 2);
-  const Eigen::MatrixXd P_xv = CurrentColumns(0, 3);  // n×3
+  const Eigen::MatrixXd P_xv = CurrentPoseColumns();  // n×3
   const Eigen::Matrix3d P_vv = P_xv.topRows<3>();
   // The stored block holds the current cross-covariance and the new rows of U are zero, so the
   // deferred correction leaves it untouched.
   P_.block(0, n_, n_, 2) = P_xv * G_x.transpose();
   P_.block<2, 2>(n_, n_) = G_x * P_vv * G_x.transpose() + G_z * obs.R * G_z.transpose();
   U_.block(n_, 0, 2, m_).setZero();
+  pose_cols_.block<2, 3>(n_, 0) = G_x * P_vv;
   x_.segment<2>(n_) = l;
   n_ += 2;
   const int index = NumLandmarks();

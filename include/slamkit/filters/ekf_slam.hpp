@@ -84,6 +84,8 @@ class EkfSlam {
   static int Offset(int landmark) { return 3 + 2 * landmark; }
   // Columns [c, c+k) of the current covariance P₀ − U Uᵀ, gathered from the stored triangle.
   Eigen::MatrixXd CurrentColumns(int c, int k) const;
+  // Columns 0-2 (the pose's) of the current covariance; cached while downdates are deferred.
+  Eigen::MatrixXd CurrentPoseColumns() const;
   // A small block of the current covariance: rows [r, r+R), columns [c, c+C).
   template <int R, int C>
   Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
@@ -105,6 +107,7 @@ class EkfSlam {
   Eigen::VectorXd x_;  // capacity-sized; the first n_ entries are the state
   Eigen::MatrixXd P_;  // capacity-sized; upper triangle of the leading n_×n_ block is valid
   Eigen::MatrixXd U_;  // capacity rows; the first m_ columns are the deferred downdate factor
+  Eigen::MatrixXd pose_cols_;  // capacity×3: the current pose columns while m_ > 0
   int m_ = 0;
   std::vector<LandmarkId> source_ids_;
   std::unordered_map<LandmarkId, int> index_of_id_;
