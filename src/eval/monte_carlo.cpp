@@ -51,6 +51,7 @@ RunResult RunEkfSlamOnce(const ScenarioParams& scenario, const LandmarkWorld& wo
   slam.Reset(sim.initial_pose);
   RunResult out;
   AssociationScorer scorer;
+  ScoreDecisions(slam, sim.initial_observations, slam.Update(sim.initial_observations), scorer);
   out.truth.push_back({0.0, sim.initial_pose});
   out.estimate.push_back({0.0, slam.pose()});
   for (const SimStep& step : sim.steps) {

@@ -71,6 +71,7 @@ SimRun Simulate(const ScenarioParams& scenario, const LandmarkWorld& world, Rng&
   SimRun run;
   run.initial_pose = scenario.initial_pose;
   Pose2 pose = scenario.initial_pose;
+  run.initial_observations = Observe(sensor, pose, landmarks, rng);
   for (int k = 0; k < scenario.max_steps; ++k) {
     const Control command = controller.Command(pose, scenario.dt_s);
     if (controller.Done()) break;

@@ -43,6 +43,8 @@ struct SimStep {
 
 struct SimRun {
   Pose2 initial_pose;
+  // What the sensor sees before the first move: the map is anchored at the known start pose.
+  std::vector<PointObservation> initial_observations;
   std::vector<SimStep> steps;
 };
 
