@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit::testing {
 
 struct CliResult {
@@ -28,13 +30,6 @@ inline CliResult RunCli(const std::string& args) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
-}
-
-inline std::string ReadText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // A fresh directory under the system temp directory, named after the running test.

@@ -8,43 +8,29 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
 
-class AtomicFile : public ::testing::Test {
+class AtomicFile : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("slamkit_atomic_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   int FilesInDir() const {
     int n = 0;
     for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir_)) ++n;
     return n;
   }
-  static std::string Read(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-  }
-
-  fs::path dir_;
 };
 
 TEST_F(AtomicFile, WritesContentAndLeavesNoTemporary) {
   const fs::path path = dir_ / "out.txt";
   WriteFileAtomically(path, [](std::ostream& out) { out << "hello\n" << 42 << '\n'; });
-  EXPECT_EQ(Read(path), "hello\n42\n");
+  EXPECT_EQ(testing::ReadText(path), "hello\n42\n");
   WriteFileAtomically(path, std::string_view("replaced"));
-  EXPECT_EQ(Read(path), "replaced");
+  EXPECT_EQ(testing::ReadText(path), "replaced");
   EXPECT_EQ(FilesInDir(), 1);
 }
 
@@ -69,7 +55,7 @@ TEST_F(AtomicFile, ThrowingWriterKeepsTheOldFile) {
   WriteFileAtomically(path, std::string_view("old"));
   EXPECT_THROW(WriteFileAtomically(path, [](std::ostream&) { throw std::runtime_error("x"); }),
                std::runtime_error);
-  EXPECT_EQ(Read(path), "old");
+  EXPECT_EQ(testing::ReadText(path), "old");
   EXPECT_EQ(FilesInDir(), 1);
 }
 

@@ -8,28 +8,18 @@
 
 #include "slamkit/io/error.hpp"
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Contains;
 
 constexpr const char* kOdometry01 = "ODOMETRY 0 1 0.5 0.01 0.02 0.0001 0 0 4e-06 0 4e-06\n";
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' lacks '" << part << "'";
-}
-
-class IsamReader : public ::testing::Test {
+class IsamReader : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("slamkit_isam_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path Write(const std::string& text) const {
     const fs::path path = dir_ / "log.txt";
@@ -45,8 +35,6 @@ class IsamReader : public ::testing::Test {
     ADD_FAILURE() << "no InputError for:\n" << text;
     return "";
   }
-
-  fs::path dir_;
 };
 
 TEST_F(IsamReader, ReadsVictoriaPark) {

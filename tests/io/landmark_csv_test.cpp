@@ -8,21 +8,16 @@
 
 #include "slamkit/io/error.hpp"
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Contains;
 
-class LandmarkCsv : public ::testing::Test {
+class LandmarkCsv : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("slamkit_csv_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path Write(const std::string& text) const {
     const fs::path path = dir_ / "landmarks.csv";
@@ -39,14 +34,7 @@ class LandmarkCsv : public ::testing::Test {
     ADD_FAILURE() << "no InputError for:\n" << text;
     return "";
   }
-
-  fs::path dir_;
 };
-
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' lacks '" << part << "'";
-}
 
 TEST_F(LandmarkCsv, ReadsHeaderCommentsBlankLinesAndSpaces) {
   const LandmarkWorld world =

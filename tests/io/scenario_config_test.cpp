@@ -11,29 +11,19 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::Contains;
 
 const fs::path kConfigs = fs::path(SLAMKIT_SOURCE_DIR) / "configs";
 constexpr const char* kRoute = "route: {waypoints_m: [[0, 0], [10, 0]]}\n";
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' lacks '" << part << "'";
-}
-
-class ScenarioConfig : public ::testing::Test {
+class ScenarioConfig : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("slamkit_yaml_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   fs::path Write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
@@ -49,8 +39,6 @@ class ScenarioConfig : public ::testing::Test {
     ADD_FAILURE() << "no InputError for:\n" << text;
     return "";
   }
-
-  fs::path dir_;
 };
 
 TEST_F(ScenarioConfig, LoadsEveryShippedConfig) {

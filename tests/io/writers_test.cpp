@@ -12,21 +12,15 @@
 
 #include "slamkit/io/landmark_csv.hpp"
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
 
-class Writers : public ::testing::Test {
+class Writers : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("slamkit_writers_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   static std::vector<std::string> Lines(const fs::path& path) {
     std::ifstream in(path);
@@ -40,8 +34,6 @@ class Writers : public ::testing::Test {
     text << in.rdbuf();
     return text.str();
   }
-
-  fs::path dir_;
 };
 
 TEST_F(Writers, TumLineFormat) {

@@ -17,6 +17,8 @@
 
 #include "slamkit/core/rng.hpp"
 
+#include "common/temp_dir.hpp"
+
 namespace slamkit {
 namespace {
 
@@ -88,22 +90,12 @@ ConsistencyFigureData SampleConsistencyData() {
   return data;
 }
 
-class Figures : public ::testing::Test {
+class Figures : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("slamkit_figures_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   int FilesInDir() const {
     return static_cast<int>(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()));
   }
-
-  fs::path dir_;
 };
 
 TEST_F(Figures, PathFigureWritesPngOfRequestedSizeAndSvg) {
