@@ -85,8 +85,10 @@ int RunMonteCarloCommand(const McOptions& options) {
   };
   const MonteCarloResult mc = RunMonteCarlo(scenario, params);
   const std::filesystem::path dir(options.out);
-  WriteMonteCarloOutputs(dir, MonteCarloMetrics(scenario, params, mc), mc);
+  std::filesystem::create_directories(dir);
+  // Figures first: metrics.json is written last, so its presence means the run completed.
   if (!options.no_figures) WriteFigures(dir, scenario, mc);
+  WriteMonteCarloOutputs(dir, MonteCarloMetrics(scenario, params, mc), mc);
   PrintSummary(scenario, mc);
   fmt::print("wrote {}\n", dir.string());
   return 0;

@@ -34,7 +34,7 @@ int RunIsamCommand(const RunOptions& o) {
   params.sighting_covariance_scale = o.sighting_covariance_scale;
   const IsamRunResult result = RunEkfSlamOnIsam(log, params);
   const std::filesystem::path dir(o.out);
-  WriteIsamOutputs(dir, IsamMetrics(result, params), result);
+  std::filesystem::create_directories(dir);
   if (!o.no_figures) {
     PathFigureData figure;
     figure.title = fmt::format("{} ({} association)", std::filesystem::path(o.isam).filename().string(),
@@ -43,6 +43,7 @@ int RunIsamCommand(const RunOptions& o) {
     figure.map = result.map;
     WritePathFigure(dir / "map.png", figure);
   }
+  WriteIsamOutputs(dir, IsamMetrics(result, params), result);  // metrics.json last
   fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
              result.sightings, o.known_association ? "known" : "nearest-neighbour");
   fmt::print("  {:<28}{:>12}\n", "landmarks mapped", result.map.landmarks.size());
