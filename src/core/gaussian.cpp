@@ -1,6 +1,7 @@
 #include "slamkit/core/gaussian.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 namespace slamkit {
 

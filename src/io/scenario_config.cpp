@@ -1,169 +1,23 @@
 #include "slamkit/io/scenario_config.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <yaml-cpp/yaml.h>
 
-#include <algorithm>
-#include <charconv>
-#include <cmath>
-#include <cstdint>
-#include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/landmark_csv.hpp"
+#include "yaml_fields.hpp"
 
 namespace slamkit {
 namespace {
 
-enum class Bound { kFinite, kNonNegative, kPositive };
-
-std::string Describe(const YAML::Node& node) {
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
-  if (node.IsSequence()) return "a sequence";
-  if (node.IsMap()) return "a map";
-  return "nothing";
-}
-
-// A YAML number; yaml-cpp's conversion also accepts the YAML spellings of infinity and NaN
-// (`.inf`, `.nan`), which the callers reject as non-finite with their own message.
-std::optional<double> ParseNumber(const YAML::Node& node) {
-  double value = 0.0;
-  if (!YAML::convert<double>::decode(node, value)) return std::nullopt;
-  return value;
-}
-
-template <typename T>
-std::optional<T> ParseInteger(const YAML::Node& node) {
-  if (!node.IsScalar()) return std::nullopt;
-  const std::string& text = node.Scalar();
-  T value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
-  return value;
-}
-
-// One YAML map of the config: checks its keys against the known ones and reads typed values,
-// leaving the output untouched when a key is absent. Errors name the file, line and key path.
-class Section {
- public:
-  Section(const YAML::Node& node, std::string file, std::string path,
-          std::vector<std::string> known)
-      : node_(node), file_(std::move(file)), path_(std::move(path)) {
-    if (!node_.IsNull() && !node_.IsMap()) {
-      FailAt(node_,
-             fmt::format("{}: expected a map, got {}",
-                         path_.empty() ? "the file" : "key '" + path_ + "'", Describe(node_)));
-    }
-    if (node_.IsMap()) CheckKeys(known);
-  }
-
-  bool Has(const std::string& key) const { return line_of_key_.count(key) > 0; }
-  YAML::Node Get(const std::string& key) const { return node_[key]; }
-  Section Child(const std::string& key, std::vector<std::string> known) const {
-    const YAML::Node child = Has(key) ? Get(key) : YAML::Node();
-    return Section(child, file_, Path(key), std::move(known));
-  }
-  std::string Path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void Fail(const std::string& key, const std::string& reason) const {
-    const auto it = line_of_key_.find(key);
-    const std::string line = it == line_of_key_.end() ? "" : fmt::format("{}:", it->second);
-    throw InputError(fmt::format("{}:{} key '{}': {}", file_, line, Path(key), reason));
-  }
-  [[noreturn]] void FailAt(const YAML::Node& at, const std::string& message) const {
-    throw InputError(fmt::format("{}:{}: {}", file_, at.Mark().line + 1, message));
-  }
-
-  double Number(const std::string& key, const YAML::Node& value, Bound bound) const {
-    const std::optional<double> v = ParseNumber(value);
-    if (!v) Fail(key, "expected a number, got " + Describe(value));
-    if (!std::isfinite(*v)) Fail(key, "must be a finite number, got " + Describe(value));
-    if (bound == Bound::kPositive && *v <= 0.0) Fail(key, fmt::format("must be > 0, got {}", *v));
-    if (bound == Bound::kNonNegative && *v < 0.0) {
-      Fail(key, fmt::format("must be >= 0, got {}", *v));
-    }
-    return *v;
-  }
-  void Read(const std::string& key, double* out, Bound bound = Bound::kFinite) const {
-    if (Has(key)) *out = Number(key, Get(key), bound);
-  }
-  void ReadDegrees(const std::string& key, double* out_rad, Bound bound) const {
-    if (Has(key)) *out_rad = DegToRad(Number(key, Get(key), bound));
-  }
-  void Read(const std::string& key, int* out, int min) const {
-    if (!Has(key)) return;
-    const std::optional<int> v = ParseInteger<int>(Get(key));
-    if (!v) Fail(key, "expected an integer, got " + Describe(Get(key)));
-    if (*v < min) Fail(key, fmt::format("must be >= {}, got {}", min, *v));
-    *out = *v;
-  }
-  void Read(const std::string& key, std::uint64_t* out) const {
-    if (!Has(key)) return;
-    const std::optional<std::uint64_t> v = ParseInteger<std::uint64_t>(Get(key));
-    if (!v) Fail(key, "expected a non-negative integer, got " + Describe(Get(key)));
-    *out = *v;
-  }
-  void Read(const std::string& key, bool* out) const {
-    if (Has(key) && !YAML::convert<bool>::decode(Get(key), *out)) {
-      Fail(key, "expected true or false, got " + Describe(Get(key)));
-    }
-  }
-  void Read(const std::string& key, std::string* out) const {
-    if (!Has(key)) return;
-    if (!Get(key).IsScalar()) Fail(key, "expected a string, got " + Describe(Get(key)));
-    *out = Get(key).Scalar();
-  }
-  // An [x, y] pair in metres.
-  Eigen::Vector2d Point(const std::string& key, const YAML::Node& value) const {
-    if (!value.IsSequence() || value.size() != 2) {
-      Fail(key, "expected a point [x, y], got " + Describe(value));
-    }
-    return {Number(key, value[0], Bound::kFinite), Number(key, value[1], Bound::kFinite)};
-  }
-  void Read(const std::string& key, Eigen::Vector2d* out) const {
-    if (Has(key)) *out = Point(key, Get(key));
-  }
-
- private:
-  void CheckKeys(const std::vector<std::string>& known) {
-    for (const auto& entry : node_) {
-      const std::string key = entry.first.Scalar();
-      if (std::find(known.begin(), known.end(), key) == known.end()) {
-        FailAt(entry.first, fmt::format("unknown key '{}' in section '{}' (known: {})", key,
-                                        path_.empty() ? "root" : path_, fmt::join(known, ", ")));
-      }
-      const auto [it, inserted] = line_of_key_.emplace(key, entry.first.Mark().line + 1);
-      if (!inserted) {
-        FailAt(entry.first,
-               fmt::format("duplicate key '{}' (first on line {})", Path(key), it->second));
-      }
-    }
-  }
-
-  YAML::Node node_;
-  std::string file_;
-  std::string path_;
-  std::map<std::string, int> line_of_key_;
-};
-
-// Reads `key` as one of `names` (whose index is the returned value).
-int ReadChoice(const Section& s, const std::string& key, const std::vector<std::string>& names,
-               int fallback) {
-  std::string value;
-  s.Read(key, &value);
-  if (!s.Has(key)) return fallback;
-  const auto it = std::find(names.begin(), names.end(), value);
-  if (it == names.end()) {
-    s.Fail(key, fmt::format("expected one of {}, got '{}'", fmt::join(names, ", "), value));
-  }
-  return static_cast<int>(it - names.begin());
-}
+using internal::Bound;
+using internal::Describe;
+using internal::ReadChoice;
+using internal::Section;
 
 void ReadUniform(const Section& s, UniformWorldParams* p) {
   s.Read("min_xy_m", &p->min_xy_m);

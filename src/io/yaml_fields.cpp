@@ -1,0 +1,155 @@
+#include "yaml_fields.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "slamkit/core/angle.hpp"
+#include "slamkit/io/error.hpp"
+
+namespace slamkit::internal {
+namespace {
+
+// A YAML number; yaml-cpp's conversion also accepts the YAML spellings of infinity and NaN
+// (`.inf`, `.nan`), which the callers reject as non-finite with their own message.
+std::optional<double> ParseNumber(const YAML::Node& node) {
+  double value = 0.0;
+  if (!YAML::convert<double>::decode(node, value)) return std::nullopt;
+  return value;
+}
+
+template <typename T>
+std::optional<T> ParseInteger(const YAML::Node& node) {
+  if (!node.IsScalar()) return std::nullopt;
+  const std::string& text = node.Scalar();
+  T value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+std::string Describe(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return "a sequence";
+  if (node.IsMap()) return "a map";
+  return "nothing";
+}
+
+Section::Section(const YAML::Node& node, std::string file, std::string path,
+                 std::vector<std::string> known)
+    : node_(node), file_(std::move(file)), path_(std::move(path)) {
+  if (!node_.IsNull() && !node_.IsMap()) {
+    FailAt(node_,
+           fmt::format("{}: expected a map, got {}",
+                       path_.empty() ? "the file" : "key '" + path_ + "'", Describe(node_)));
+  }
+  if (node_.IsMap()) CheckKeys(known);
+}
+
+Section Section::Child(const std::string& key, std::vector<std::string> known) const {
+  const YAML::Node child = Has(key) ? Get(key) : YAML::Node();
+  return Section(child, file_, Path(key), std::move(known));
+}
+
+void Section::Fail(const std::string& key, const std::string& reason) const {
+  const auto it = line_of_key_.find(key);
+  const std::string line = it == line_of_key_.end() ? "" : fmt::format("{}:", it->second);
+  throw InputError(fmt::format("{}:{} key '{}': {}", file_, line, Path(key), reason));
+}
+
+void Section::FailAt(const YAML::Node& at, const std::string& message) const {
+  throw InputError(fmt::format("{}:{}: {}", file_, at.Mark().line + 1, message));
+}
+
+double Section::Number(const std::string& key, const YAML::Node& value, Bound bound) const {
+  const std::optional<double> v = ParseNumber(value);
+  if (!v) Fail(key, "expected a number, got " + Describe(value));
+  if (!std::isfinite(*v)) Fail(key, "must be a finite number, got " + Describe(value));
+  if (bound == Bound::kPositive && *v <= 0.0) Fail(key, fmt::format("must be > 0, got {}", *v));
+  if (bound == Bound::kNonNegative && *v < 0.0) {
+    Fail(key, fmt::format("must be >= 0, got {}", *v));
+  }
+  return *v;
+}
+
+void Section::Read(const std::string& key, double* out, Bound bound) const {
+  if (Has(key)) *out = Number(key, Get(key), bound);
+}
+
+void Section::ReadDegrees(const std::string& key, double* out_rad, Bound bound) const {
+  if (Has(key)) *out_rad = DegToRad(Number(key, Get(key), bound));
+}
+
+void Section::Read(const std::string& key, int* out, int min) const {
+  if (!Has(key)) return;
+  const std::optional<int> v = ParseInteger<int>(Get(key));
+  if (!v) Fail(key, "expected an integer, got " + Describe(Get(key)));
+  if (*v < min) Fail(key, fmt::format("must be >= {}, got {}", min, *v));
+  *out = *v;
+}
+
+void Section::Read(const std::string& key, std::uint64_t* out) const {
+  if (!Has(key)) return;
+  const std::optional<std::uint64_t> v = ParseInteger<std::uint64_t>(Get(key));
+  if (!v) Fail(key, "expected a non-negative integer, got " + Describe(Get(key)));
+  *out = *v;
+}
+
+void Section::Read(const std::string& key, bool* out) const {
+  if (Has(key) && !YAML::convert<bool>::decode(Get(key), *out)) {
+    Fail(key, "expected true or false, got " + Describe(Get(key)));
+  }
+}
+
+void Section::Read(const std::string& key, std::string* out) const {
+  if (!Has(key)) return;
+  if (!Get(key).IsScalar()) Fail(key, "expected a string, got " + Describe(Get(key)));
+  *out = Get(key).Scalar();
+}
+
+Eigen::Vector2d Section::Point(const std::string& key, const YAML::Node& value) const {
+  if (!value.IsSequence() || value.size() != 2) {
+    Fail(key, "expected a point [x, y], got " + Describe(value));
+  }
+  return {Number(key, value[0], Bound::kFinite), Number(key, value[1], Bound::kFinite)};
+}
+
+void Section::Read(const std::string& key, Eigen::Vector2d* out) const {
+  if (Has(key)) *out = Point(key, Get(key));
+}
+
+void Section::CheckKeys(const std::vector<std::string>& known) {
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.Scalar();
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      FailAt(entry.first, fmt::format("unknown key '{}' in section '{}' (known: {})", key,
+                                      path_.empty() ? "root" : path_, fmt::join(known, ", ")));
+    }
+    const auto [it, inserted] = line_of_key_.emplace(key, entry.first.Mark().line + 1);
+    if (!inserted) {
+      FailAt(entry.first,
+             fmt::format("duplicate key '{}' (first on line {})", Path(key), it->second));
+    }
+  }
+}
+
+int ReadChoice(const Section& s, const std::string& key, const std::vector<std::string>& names,
+               int fallback) {
+  std::string value;
+  s.Read(key, &value);
+  if (!s.Has(key)) return fallback;
+  const auto it = std::find(names.begin(), names.end(), value);
+  if (it == names.end()) {
+    s.Fail(key, fmt::format("expected one of {}, got '{}'", fmt::join(names, ", "), value));
+  }
+  return static_cast<int>(it - names.begin());
+}
+
+}  // namespace slamkit::internal

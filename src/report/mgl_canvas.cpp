@@ -1,0 +1,106 @@
+#include "mgl_canvas.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <stdexcept>
+#include <system_error>
+
+namespace slamkit::internal {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A temporary name beside `path`, unique across threads and processes, with the same extension.
+fs::path TemporaryPathBeside(const fs::path& path) {
+  std::random_device entropy;
+  char suffix[32];
+  std::snprintf(suffix, sizeof(suffix), ".tmp-%08x%08x", entropy(), entropy());
+  std::string name = ".";
+  name += path.filename().string();
+  name += suffix;
+  name += path.extension().string();
+  return path.parent_path() / name;
+}
+
+}  // namespace
+
+ImageFormat CheckedFormat(const fs::path& path, int width_px, int height_px) {
+  if (width_px <= 0 || height_px <= 0) {
+    throw std::invalid_argument("figure " + path.string() + ": width and height must be positive");
+  }
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".png") return ImageFormat::kPng;
+  if (ext == ".svg") return ImageFormat::kSvg;
+  throw std::invalid_argument("figure " + path.string() + ": extension must be .png or .svg");
+}
+
+void SuppressMglWarnings() { mglGraph::SuppressWarn(true); }
+
+void WriteAtomically(mglGraph& gr, const fs::path& path, ImageFormat format) {
+  const fs::path tmp = TemporaryPathBeside(path);
+  gr.SetWarn(mglWarnNone, "");
+  if (format == ImageFormat::kPng) {
+    gr.WritePNG(tmp.c_str(), "", false);
+  } else {
+    gr.WriteSVG(tmp.c_str());
+  }
+  std::error_code ec;
+  const bool written = gr.GetWarn() != mglWarnOpen && fs::is_regular_file(tmp, ec) &&
+                       fs::file_size(tmp, ec) > 0 && !ec;
+  if (written) fs::rename(tmp, path, ec);
+  if (!written || ec) {
+    fs::remove(tmp, ec);
+    throw std::runtime_error("cannot write figure " + path.string());
+  }
+}
+
+std::string Escaped(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (std::string_view("\\_^@{}#").find(c) != std::string_view::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+void Range::Add(double v) {
+  if (!std::isfinite(v)) return;
+  lo_ = std::min(lo_, v);
+  hi_ = std::max(hi_, v);
+}
+
+void Range::Add(const std::vector<double>& values) {
+  for (const double v : values) Add(v);
+}
+
+std::pair<double, double> Range::Padded(double margin, double min_span) const {
+  if (lo_ > hi_) return {0.0, 1.0};
+  const double center = 0.5 * (lo_ + hi_);
+  const double span = hi_ - lo_;
+  const double floor = span > 0.0 ? min_span : std::max(min_span, 0.1 * std::abs(center));
+  const double half = 0.5 * std::max(span * (1.0 + 2.0 * margin), floor);
+  return {center - half, center + half};
+}
+
+void DrawFrame(mglGraph& gr, const char* x_label, const char* y_label) {
+  gr.SetTickRotate(false);
+  gr.Grid("xy", "{h7}");
+  gr.Box();
+  gr.Axis("xy");
+  if (x_label != nullptr) gr.Label('x', x_label, 0);
+  if (y_label != nullptr) gr.Label('y', y_label, 0, "value 0.3");  // clear of wide ticks
+}
+
+void PutsAboveBox(mglGraph& gr, const Box& box, const std::string& text, double lift,
+                  double size) {
+  const double x = 0.5 * (box.lo.x + box.hi.x);
+  const double y = box.hi.y + lift * (box.hi.y - box.lo.y);
+  gr.Puts(mglPoint(x, y), text.c_str(), ":C", size);
+}
+
+}  // namespace slamkit::internal

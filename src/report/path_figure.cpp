@@ -1,0 +1,201 @@
+// The map figure: true and estimated paths, landmarks and their covariance ellipses.
+
+#include "slamkit/report/figures.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+#include <mgl2/mgl.h>
+
+#include "mgl_canvas.hpp"
+
+namespace slamkit {
+namespace {
+
+using internal::Box;
+using internal::CheckedFormat;
+using internal::DrawFrame;
+using internal::Escaped;
+using internal::ImageFormat;
+using internal::PutsAboveBox;
+using internal::Range;
+using internal::Region;
+using internal::SuppressMglWarnings;
+using internal::WriteAtomically;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr int kEllipsePoints = 36;
+
+// Layout, tuned by eye on 1200×1000 images: MathGL scales fonts with the region's size.
+constexpr Region kPathRegion{-0.07, 1.1, -0.05, 1.06};
+constexpr double kPathFontSize = 3.0;
+
+// Paired coordinates for one MathGL polyline or marker set.
+struct XyData {
+  std::vector<double> x;
+  std::vector<double> y;
+  void Add(double px, double py) {
+    x.push_back(px);
+    y.push_back(py);
+  }
+  bool Empty() const { return x.empty(); }
+};
+
+XyData PathPoints(const Trajectory& trajectory) {
+  XyData xy;
+  for (const StampedPose& p : trajectory) xy.Add(p.pose.x(), p.pose.y());
+  return xy;
+}
+
+// Every ellipse as a closed polyline followed by a NaN, where MathGL breaks the line.
+XyData EllipsePolylines(const LandmarkMap& map, double sigma) {
+  XyData xy;
+  xy.x.reserve(map.landmarks.size() * (kEllipsePoints + 2));
+  xy.y.reserve(xy.x.capacity());
+  for (const MappedLandmark& l : map.landmarks) {
+    const std::vector<Eigen::Vector2d> ring =
+        CovarianceEllipse(l.position_m, l.covariance, sigma, kEllipsePoints);
+    for (const Eigen::Vector2d& p : ring) xy.Add(p.x(), p.y());
+    xy.Add(ring.front().x(), ring.front().y());
+    xy.Add(kNaN, kNaN);
+  }
+  return xy;
+}
+
+struct MapLayers {
+  XyData truth;
+  XyData estimate;
+  XyData true_landmarks;
+  XyData landmarks;
+  XyData ellipses;
+};
+
+MapLayers BuildLayers(const PathFigureData& data) {
+  MapLayers layers{PathPoints(data.truth), PathPoints(data.estimate), {}, {}, {}};
+  for (const Landmark& l : data.true_landmarks.landmarks) {
+    layers.true_landmarks.Add(l.position_m.x(), l.position_m.y());
+  }
+  for (const MappedLandmark& l : data.map.landmarks) {
+    layers.landmarks.Add(l.position_m.x(), l.position_m.y());
+  }
+  layers.ellipses = EllipsePolylines(data.map, data.ellipse_sigma);
+  return layers;
+}
+
+// Sets the data limits of the current region: `x` and `y` with equal scale on both axes, the
+// span widened so the box is filled. Ellipses do not count: one huge fresh landmark would
+// otherwise shrink the whole map.
+Box SetEqualScaleRanges(mglGraph& gr, const MapLayers& layers) {
+  Range rx;
+  Range ry;
+  for (const XyData* xy : {&layers.truth, &layers.estimate, &layers.true_landmarks,
+                           &layers.landmarks}) {
+    rx.Add(xy->x);
+    ry.Add(xy->y);
+  }
+  gr.SetRanges(0.0, 1.0, 0.0, 1.0);
+  const mglPoint corner0 = gr.CalcScr(mglPoint(0.0, 0.0));
+  const mglPoint corner1 = gr.CalcScr(mglPoint(1.0, 1.0));
+  const double box_aspect = (corner1.x - corner0.x) / (corner1.y - corner0.y);
+  const auto [x0, x1] = rx.Padded(0.04, 1.0);
+  const auto [y0, y1] = ry.Padded(0.04, 1.0);
+  const double half_x = 0.5 * std::max(x1 - x0, (y1 - y0) * box_aspect);
+  const double half_y = half_x / box_aspect;
+  const mglPoint center(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+  const Box box{mglPoint(center.x - half_x, center.y - half_y),
+                mglPoint(center.x + half_x, center.y + half_y)};
+  gr.SetRanges(box.lo, box.hi);
+  return box;
+}
+
+// The legend corner (MathGL's 0 bottom-left … 3 top-right) covering the fewest drawn points.
+int EmptiestCorner(const MapLayers& layers, const Box& box) {
+  std::array<int, 4> count{};
+  for (const XyData* xy : {&layers.truth, &layers.estimate, &layers.true_landmarks,
+                           &layers.landmarks}) {
+    for (std::size_t i = 0; i < xy->x.size(); ++i) {
+      const double u = (xy->x[i] - box.lo.x) / (box.hi.x - box.lo.x);
+      const double v = (xy->y[i] - box.lo.y) / (box.hi.y - box.lo.y);
+      if (u > 0.35 && u < 0.65) continue;
+      if (v > 0.3 && v < 0.7) continue;
+      ++count[(u >= 0.5 ? 1 : 0) + (v >= 0.5 ? 2 : 0)];
+    }
+  }
+  const int corners[] = {3, 2, 1, 0};  // preference on ties: top right first
+  return *std::min_element(std::begin(corners), std::end(corners),
+                           [&](int a, int b) { return count[a] < count[b]; });
+}
+
+struct Layer {
+  const XyData* xy;
+  const char* pen;
+  std::string legend;
+};
+
+// Draws bottom to top (ellipses under paths under markers) and lists the legend in reading order;
+// false when there was nothing to draw.
+bool DrawMapLayers(mglGraph& gr, const MapLayers& layers, double sigma) {
+  char ellipse_label[64];
+  std::snprintf(ellipse_label, sizeof(ellipse_label), "%g\\sigma{} ellipses", sigma);
+  const Layer drawn[] = {{&layers.ellipses, "{r6}-", ellipse_label},
+                         {&layers.truth, "k-2", "true path"},
+                         {&layers.estimate, "b-2", "estimated path"},
+                         {&layers.landmarks, "r .", "estimated landmarks"},
+                         {&layers.true_landmarks, "g +", "true landmarks"}};
+  for (const Layer& layer : drawn) {
+    if (!layer.xy->Empty()) gr.Plot(mglData(layer.xy->x), mglData(layer.xy->y), layer.pen);
+  }
+  bool any = false;
+  for (const int i : {1, 2, 4, 3, 0}) {
+    if (drawn[i].xy->Empty()) continue;
+    gr.AddLegend(drawn[i].legend.c_str(), drawn[i].pen);
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> CovarianceEllipse(const Eigen::Vector2d& mean,
+                                               const Eigen::Matrix2d& cov, double sigma,
+                                               int points) {
+  // cov = V Λ Vᵀ, so L = V Λ^½ satisfies L Lᵀ = cov; eigenvalues come in increasing order, and
+  // the columns are swapped so that u = (1, 0) maps to the major semi-axis.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(cov);
+  const Eigen::Vector2d root = eigen.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+  Eigen::Matrix2d L;
+  L.col(0) = eigen.eigenvectors().col(1) * root(1);
+  L.col(1) = eigen.eigenvectors().col(0) * root(0);
+  std::vector<Eigen::Vector2d> ring;
+  ring.reserve(static_cast<std::size_t>(std::max(points, 0)));
+  for (int k = 0; k < points; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / points;
+    ring.push_back(mean + sigma * (L * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
+  }
+  return ring;
+}
+
+void WritePathFigure(const std::filesystem::path& path, const PathFigureData& data) {
+  const ImageFormat format = CheckedFormat(path, data.width_px, data.height_px);
+  const MapLayers layers = BuildLayers(data);
+  SuppressMglWarnings();
+  mglGraph gr(0, data.width_px, data.height_px);
+  gr.SetFontSize(kPathFontSize);
+  gr.InPlot(kPathRegion.x0, kPathRegion.x1, kPathRegion.y0, kPathRegion.y1, false);
+  const Box box = SetEqualScaleRanges(gr, layers);
+  DrawFrame(gr, "x [m]", "y [m]");
+  if (!data.title.empty()) PutsAboveBox(gr, box, Escaped(data.title), 0.03, -1.4);
+  if (DrawMapLayers(gr, layers, data.ellipse_sigma)) {
+    gr.Legend(EmptiestCorner(layers, box), "#", "size 2.5");
+  }
+  WriteAtomically(gr, path, format);
+}
+
+}  // namespace slamkit
