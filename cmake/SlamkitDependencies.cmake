@@ -9,6 +9,7 @@ find_package(CLI11 REQUIRED)
 find_package(TBB REQUIRED)
 find_package(Boost 1.74 REQUIRED)  # header-only parts: Boost.Math
 find_package(PNG REQUIRED)
+find_package(ZLIB REQUIRED)
 
 # MathGL's own CMake config references optional front-ends (Qt, MPI) whose files Debian splits
 # into other packages, so the core library is located directly.

@@ -1,0 +1,85 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/models/laser_scan.hpp"
+
+namespace slamkit {
+
+// A cell of the grid: integer coordinates, cell (0, 0) covers [0, r) × [0, r) in metres.
+struct CellIndex {
+  int x = 0;
+  int y = 0;
+  friend bool operator==(const CellIndex&, const CellIndex&) = default;
+};
+
+struct OccupancyGridParams {
+  double resolution_m = 0.05;
+  float log_odds_hit = 0.85f;    // ≈ ln(0.7 / 0.3)
+  float log_odds_miss = -0.4f;   // ≈ ln(0.4 / 0.6)
+  float log_odds_min = -4.0f;    // clamping keeps cells able to change their mind
+  float log_odds_max = 4.0f;
+};
+
+// An occupancy grid in log-odds (0 = unknown) that grows as it is written, stored in square
+// tiles held by shared pointers: copying a grid shares every tile, and a write to a shared tile
+// copies that tile only (copy-on-write). Particles of a particle filter can thus each own a map
+// while sharing the parts they have not changed.
+class OccupancyGrid {
+ public:
+  static constexpr int kTileBits = 6;  // 64 × 64 cells per tile
+  static constexpr int kTileSize = 1 << kTileBits;
+
+  explicit OccupancyGrid(const OccupancyGridParams& params = {});
+
+  const OccupancyGridParams& params() const { return params_; }
+  double resolution() const { return params_.resolution_m; }
+  CellIndex WorldToCell(const Eigen::Vector2d& p) const;
+  Eigen::Vector2d CellCenter(const CellIndex& c) const;
+
+  float LogOdds(const CellIndex& c) const;  // 0 outside the written area
+  double Probability(const CellIndex& c) const;
+  bool IsKnown(const CellIndex& c) const { return LogOdds(c) != 0.0f; }
+  // Adds `delta` to the cell's log-odds, clamped to [log_odds_min, log_odds_max].
+  void Update(const CellIndex& c, float delta);
+
+  // Inclusive bounds of the cells written so far (min > max when nothing was written).
+  CellIndex min_cell() const { return min_cell_; }
+  CellIndex max_cell() const { return max_cell_; }
+  std::size_t TileCount() const;
+  std::size_t SharedTileCount() const;  // tiles also referenced by another grid
+
+ private:
+  using Tile = std::array<float, kTileSize * kTileSize>;
+  std::shared_ptr<Tile>* FindTileSlot(int tx, int ty);
+  const Tile* FindTile(int tx, int ty) const;
+  Tile& MutableTile(int tx, int ty);
+
+  OccupancyGridParams params_;
+  // Tiles in a row-major table over the tile range [tile_min_, tile_min_ + tile_extent_).
+  std::vector<std::shared_ptr<Tile>> tiles_;
+  CellIndex tile_min_{0, 0};
+  CellIndex tile_extent_{0, 0};
+  CellIndex min_cell_{1, 1};
+  CellIndex max_cell_{0, 0};
+};
+
+// Cells on the digital line from `from` to `to` (integer Bresenham), both ends included, in order.
+std::vector<CellIndex> RayCells(const CellIndex& from, const CellIndex& to);
+
+struct ScanInsertionParams {
+  double usable_range_m = 30.0;  // beams are cut here; a cut beam marks free space only
+};
+
+// Inverse sensor model: every beam marks the cells it crosses as free and, if it returned
+// within usable range, its end cell as occupied. `laser_pose` is the laser in the world frame.
+void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& scan,
+                const ScanInsertionParams& params = {});
+
+}  // namespace slamkit
