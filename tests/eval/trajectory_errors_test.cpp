@@ -1,0 +1,82 @@
+#include "slamkit/eval/trajectory_errors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace slamkit {
+namespace {
+
+const Trajectory kEstimate = {{0.0, Pose2(0, 0, 0)}, {1.0, Pose2(1, 0, 0)},
+                              {2.0, Pose2(1, 1, M_PI / 2)}};
+
+// Hand-computed: the three relations have translational errors 0, 0.2, 0 m and rotational
+// errors 0, 0, 0.1 rad.
+TEST(Relations, MatchHandComputedErrors) {
+  const std::vector<PoseRelation> relations = {{0.0, 1.0, Pose2(1, 0, 0)},
+                                               {1.0, 2.0, Pose2(0, 1.2, M_PI / 2)},
+                                               {0.0, 2.0, Pose2(1, 1, M_PI / 2 - 0.1)}};
+  const RelationErrorStats s = EvaluateRelations(kEstimate, relations);
+  EXPECT_EQ(s.count, 3);
+  EXPECT_NEAR(s.trans_mean_m, 0.2 / 3.0, 1e-12);
+  EXPECT_NEAR(s.trans_std_m, std::sqrt((2 * std::pow(0.2 / 3, 2) + std::pow(0.4 / 3, 2)) / 3),
+              1e-12);
+  const double rot_deg = 0.1 * 180.0 / M_PI;
+  EXPECT_NEAR(s.rot_mean_deg, rot_deg / 3.0, 1e-9);
+  EXPECT_NEAR(s.rot_std_deg, rot_deg * std::sqrt(2.0) / 3.0, 1e-9);
+}
+
+TEST(Relations, PerfectEstimateHasZeroErrorWhateverTheFrame) {
+  // Relations are frame-free: moving the whole estimate rigidly changes nothing.
+  const Pose2 shift(5.0, -3.0, 1.0);
+  Trajectory moved;
+  for (const StampedPose& p : kEstimate) moved.push_back({p.t_s, shift.Compose(p.pose)});
+  std::vector<PoseRelation> relations;
+  for (int i = 0; i + 1 < 3; ++i) {
+    relations.push_back({kEstimate[i].t_s, kEstimate[i + 1].t_s,
+                         kEstimate[i].pose.Between(kEstimate[i + 1].pose)});
+  }
+  const RelationErrorStats s = EvaluateRelations(moved, relations);
+  EXPECT_NEAR(s.trans_mean_m, 0.0, 1e-12);
+  EXPECT_NEAR(s.rot_mean_deg, 0.0, 1e-9);
+}
+
+TEST(Relations, MissingPoseIsAnError) {
+  const std::vector<PoseRelation> relations = {{0.0, 1.5, Pose2()}};
+  EXPECT_THROW(EvaluateRelations(kEstimate, relations), std::invalid_argument);
+}
+
+TEST(FindPoseAt, NearestWithinTolerance) {
+  EXPECT_EQ(FindPoseAt(kEstimate, 1.0004, 1e-3), 1);
+  EXPECT_EQ(FindPoseAt(kEstimate, 0.9996, 1e-3), 1);
+  EXPECT_EQ(FindPoseAt(kEstimate, 1.5, 1e-3), -1);
+  EXPECT_EQ(FindPoseAt(kEstimate, 2.0, 1e-3), 2);
+  EXPECT_EQ(FindPoseAt(kEstimate, -0.0005, 1e-3), 0);
+}
+
+TEST(AbsoluteTrajectoryError, IgnoresRigidMotionAndMeasuresTheRest) {
+  Trajectory reference, estimate;
+  const Pose2 frame(2.0, 1.0, 0.5);
+  for (int i = 0; i < 10; ++i) {
+    const Pose2 p(i * 1.0, (i % 3) * 0.5, 0.1 * i);
+    reference.push_back({double(i), p});
+    estimate.push_back({double(i), frame.Compose(p)});
+  }
+  EXPECT_NEAR(AbsoluteTrajectoryError(estimate, reference).rmse_m, 0.0, 1e-9);
+  // A square grown by 10 % cannot be aligned onto the original by a rigid motion: every corner
+  // stays 0.1·√2 m away.
+  Trajectory square, grown;
+  const std::vector<Eigen::Vector2d> corners = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (int i = 0; i < 4; ++i) {
+    square.push_back({double(i), Pose2(corners[i].x(), corners[i].y(), 0)});
+    grown.push_back({double(i), Pose2(1.1 * corners[i].x(), 1.1 * corners[i].y(), 0)});
+  }
+  const auto ate = AbsoluteTrajectoryError(grown, square);
+  EXPECT_EQ(ate.count, 4);
+  EXPECT_NEAR(ate.rmse_m, 0.1 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(ate.max_m, 0.1 * std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(ate.mean_m, 0.1 * std::sqrt(2.0), 1e-12);
+}
+
+}  // namespace
+}  // namespace slamkit
