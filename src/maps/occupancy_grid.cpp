@@ -1,0 +1,142 @@
+#include "slamkit/maps/occupancy_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace slamkit {
+namespace {
+
+constexpr int kTileMask = OccupancyGrid::kTileSize - 1;
+
+// Tile coordinate of a cell coordinate (floor division: >> on a negative int is arithmetic).
+int TileOf(int cell) { return cell >> OccupancyGrid::kTileBits; }
+int OffsetInTile(int cell) { return cell & kTileMask; }
+int IndexInTile(const CellIndex& c) {
+  return OffsetInTile(c.y) * OccupancyGrid::kTileSize + OffsetInTile(c.x);
+}
+
+// Row-major index of tile (tx, ty) in a table over [min, min + extent), or -1 outside it.
+std::ptrdiff_t TableIndex(const CellIndex& min, const CellIndex& extent, int tx, int ty) {
+  const int ix = tx - min.x;
+  const int iy = ty - min.y;
+  if (ix < 0 || iy < 0 || ix >= extent.x || iy >= extent.y) return -1;
+  return static_cast<std::ptrdiff_t>(iy) * extent.x + ix;
+}
+
+// The tile range [lo, hi) along one axis after growing [old_lo, old_lo + old_extent) to hold
+// tile `t`. A side that has to grow at least doubles the extent, so a map explored in one
+// direction is re-tabled O(log n) times; an empty table starts with one tile of slack around t.
+std::pair<int, int> GrownRange(int old_lo, int old_extent, int t) {
+  if (old_extent == 0) return {t - 1, t + 2};
+  const int old_hi = old_lo + old_extent;
+  int lo = old_lo;
+  int hi = old_hi;
+  if (t < old_lo) lo = std::min(t - 1, old_lo - old_extent);
+  if (t >= old_hi) hi = std::max(t + 2, old_hi + old_extent);
+  return {lo, hi};
+}
+
+// Re-tables `tiles` (row-major over [min, min + extent)) over a range that holds tile (tx, ty),
+// moving the tile pointers: no tile is copied and none changes owner count.
+template <typename TilePtr>
+[[gnu::noinline]] void GrowTable(std::vector<TilePtr>& tiles, CellIndex& min, CellIndex& extent,
+                                 int tx, int ty) {
+  const auto [x_lo, x_hi] = GrownRange(min.x, extent.x, tx);
+  const auto [y_lo, y_hi] = GrownRange(min.y, extent.y, ty);
+  const CellIndex grown_min{x_lo, y_lo};
+  const CellIndex grown_extent{x_hi - x_lo, y_hi - y_lo};
+  std::vector<TilePtr> grown(static_cast<std::size_t>(grown_extent.x) * grown_extent.y);
+  for (int iy = 0; iy < extent.y; ++iy) {
+    for (int ix = 0; ix < extent.x; ++ix) {
+      const std::ptrdiff_t to = TableIndex(grown_min, grown_extent, min.x + ix, min.y + iy);
+      grown[static_cast<std::size_t>(to)] =
+          std::move(tiles[static_cast<std::size_t>(iy) * extent.x + ix]);
+    }
+  }
+  tiles = std::move(grown);
+  min = grown_min;
+  extent = grown_extent;
+}
+
+}  // namespace
+
+OccupancyGrid::OccupancyGrid(const OccupancyGridParams& params) : params_(params) {}
+
+CellIndex OccupancyGrid::WorldToCell(const Eigen::Vector2d& p) const {
+  return {static_cast<int>(std::floor(p.x() / params_.resolution_m)),
+          static_cast<int>(std::floor(p.y() / params_.resolution_m))};
+}
+
+Eigen::Vector2d OccupancyGrid::CellCenter(const CellIndex& c) const {
+  return {(c.x + 0.5) * params_.resolution_m, (c.y + 0.5) * params_.resolution_m};
+}
+
+std::shared_ptr<OccupancyGrid::Tile>* OccupancyGrid::FindTileSlot(int tx, int ty) {
+  const std::ptrdiff_t i = TableIndex(tile_min_, tile_extent_, tx, ty);
+  return i < 0 ? nullptr : &tiles_[static_cast<std::size_t>(i)];
+}
+
+const OccupancyGrid::Tile* OccupancyGrid::FindTile(int tx, int ty) const {
+  const std::ptrdiff_t i = TableIndex(tile_min_, tile_extent_, tx, ty);
+  return i < 0 ? nullptr : tiles_[static_cast<std::size_t>(i)].get();
+}
+
+OccupancyGrid::Tile& OccupancyGrid::MutableTile(int tx, int ty) {
+  std::shared_ptr<Tile>* slot = FindTileSlot(tx, ty);
+  if (slot == nullptr) [[unlikely]] {
+    GrowTable(tiles_, tile_min_, tile_extent_, tx, ty);
+    slot = FindTileSlot(tx, ty);
+  }
+  if (*slot == nullptr) [[unlikely]] {
+    *slot = std::make_shared<Tile>();
+    (*slot)->fill(0.0f);
+  } else if (slot->use_count() > 1) [[unlikely]] {
+    *slot = std::make_shared<Tile>(**slot);  // copy-on-write: unshare this tile only
+  }
+  return **slot;
+}
+
+float OccupancyGrid::LogOdds(const CellIndex& c) const {
+  const Tile* tile = FindTile(TileOf(c.x), TileOf(c.y));
+  return tile == nullptr ? 0.0f : (*tile)[IndexInTile(c)];
+}
+
+double OccupancyGrid::Probability(const CellIndex& c) const {
+  return 1.0 - 1.0 / (1.0 + std::exp(static_cast<double>(LogOdds(c))));
+}
+
+void OccupancyGrid::Update(const CellIndex& c, float delta) {
+  // Hot path (once per cell per beam). The cell is only ever read and written one int at a time:
+  // callers build it with two 4-byte stores, and an 8-byte load of it (which GCC emits for
+  // whole-struct copies and vectorised min/max) stalls on store forwarding, which made an update
+  // about 2.5x slower (15 ns instead of 6 ns here).
+  const int x = c.x;
+  const int y = c.y;
+  float& l = MutableTile(TileOf(x), TileOf(y))[OffsetInTile(y) * kTileSize + OffsetInTile(x)];
+  l = std::clamp(l + delta, params_.log_odds_min, params_.log_odds_max);
+  if (min_cell_.x > max_cell_.x) {  // the first write
+    min_cell_.x = max_cell_.x = x;
+    min_cell_.y = max_cell_.y = y;
+    return;
+  }
+  if (x < min_cell_.x) min_cell_.x = x;
+  if (y < min_cell_.y) min_cell_.y = y;
+  if (x > max_cell_.x) max_cell_.x = x;
+  if (y > max_cell_.y) max_cell_.y = y;
+}
+
+std::size_t OccupancyGrid::TileCount() const {
+  return static_cast<std::size_t>(
+      std::count_if(tiles_.begin(), tiles_.end(), [](const auto& t) { return t != nullptr; }));
+}
+
+std::size_t OccupancyGrid::SharedTileCount() const {
+  return static_cast<std::size_t>(std::count_if(tiles_.begin(), tiles_.end(), [](const auto& t) {
+    return t != nullptr && t.use_count() > 1;
+  }));
+}
+
+}  // namespace slamkit

@@ -1,0 +1,271 @@
+#include "slamkit/maps/occupancy_grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <ostream>
+#include <random>
+#include <utility>
+#include <vector>
+
+namespace slamkit {
+
+// Found by argument-dependent lookup, so gtest prints cells readably.
+static void PrintTo(const CellIndex& c, std::ostream* os) {
+  *os << "(" << c.x << ", " << c.y << ")";
+}
+
+namespace {
+
+using Cells = std::vector<CellIndex>;
+
+Cells Reversed(Cells cells) {
+  std::reverse(cells.begin(), cells.end());
+  return cells;
+}
+
+TEST(RayCells, SingleCellHorizontalVerticalAndDiagonal) {
+  EXPECT_EQ(RayCells({3, 4}, {3, 4}), (Cells{{3, 4}}));
+  EXPECT_EQ(RayCells({0, 0}, {3, 0}), (Cells{{0, 0}, {1, 0}, {2, 0}, {3, 0}}));
+  EXPECT_EQ(RayCells({3, 0}, {0, 0}), (Cells{{3, 0}, {2, 0}, {1, 0}, {0, 0}}));
+  EXPECT_EQ(RayCells({2, 1}, {2, -2}), (Cells{{2, 1}, {2, 0}, {2, -1}, {2, -2}}));
+  EXPECT_EQ(RayCells({0, 0}, {3, 3}), (Cells{{0, 0}, {1, 1}, {2, 2}, {3, 3}}));
+  EXPECT_EQ(RayCells({0, 0}, {-2, 2}), (Cells{{0, 0}, {-1, 1}, {-2, 2}}));
+  EXPECT_EQ(RayCells({1, 1}, {-1, -1}), (Cells{{1, 1}, {0, 0}, {-1, -1}}));
+  EXPECT_EQ(RayCells({-1, 1}, {1, -1}), (Cells{{-1, 1}, {0, 0}, {1, -1}}));
+}
+
+// Slopes 2/5 and 5/2 in all eight octants; the true line never passes half-way between cells.
+TEST(RayCells, ShallowAndSteepLinesInAllOctants) {
+  EXPECT_EQ(RayCells({0, 0}, {5, 2}), (Cells{{0, 0}, {1, 0}, {2, 1}, {3, 1}, {4, 2}, {5, 2}}));
+  EXPECT_EQ(RayCells({0, 0}, {2, 5}), (Cells{{0, 0}, {0, 1}, {1, 2}, {1, 3}, {2, 4}, {2, 5}}));
+  EXPECT_EQ(RayCells({0, 0}, {-2, 5}),
+            (Cells{{0, 0}, {0, 1}, {-1, 2}, {-1, 3}, {-2, 4}, {-2, 5}}));
+  EXPECT_EQ(RayCells({0, 0}, {-5, 2}),
+            (Cells{{0, 0}, {-1, 0}, {-2, 1}, {-3, 1}, {-4, 2}, {-5, 2}}));
+  EXPECT_EQ(RayCells({0, 0}, {-5, -2}),
+            (Cells{{0, 0}, {-1, 0}, {-2, -1}, {-3, -1}, {-4, -2}, {-5, -2}}));
+  EXPECT_EQ(RayCells({0, 0}, {-2, -5}),
+            (Cells{{0, 0}, {0, -1}, {-1, -2}, {-1, -3}, {-2, -4}, {-2, -5}}));
+  EXPECT_EQ(RayCells({0, 0}, {2, -5}),
+            (Cells{{0, 0}, {0, -1}, {1, -2}, {1, -3}, {2, -4}, {2, -5}}));
+  EXPECT_EQ(RayCells({0, 0}, {5, -2}),
+            (Cells{{0, 0}, {1, 0}, {2, -1}, {3, -1}, {4, -2}, {5, -2}}));
+  // Away from the origin, and backwards.
+  EXPECT_EQ(RayCells({15, -1}, {10, -3}),
+            (Cells{{15, -1}, {14, -1}, {13, -2}, {12, -2}, {11, -3}, {10, -3}}));
+}
+
+// When the true line passes exactly half-way between two cells, the smaller minor coordinate wins,
+// from whichever end the ray starts.
+TEST(RayCells, TiesGoToTheSmallerMinorCoordinateInBothDirections) {
+  EXPECT_EQ(RayCells({0, 0}, {2, 1}), (Cells{{0, 0}, {1, 0}, {2, 1}}));
+  EXPECT_EQ(RayCells({2, 1}, {0, 0}), (Cells{{2, 1}, {1, 0}, {0, 0}}));
+  EXPECT_EQ(RayCells({0, 0}, {2, -1}), (Cells{{0, 0}, {1, -1}, {2, -1}}));
+  EXPECT_EQ(RayCells({2, -1}, {0, 0}), (Cells{{2, -1}, {1, -1}, {0, 0}}));
+  EXPECT_EQ(RayCells({0, 0}, {1, 2}), (Cells{{0, 0}, {0, 1}, {1, 2}}));
+  EXPECT_EQ(RayCells({1, 2}, {0, 0}), (Cells{{1, 2}, {0, 1}, {0, 0}}));
+  EXPECT_EQ(RayCells({0, 0}, {-1, 2}), (Cells{{0, 0}, {-1, 1}, {-1, 2}}));
+}
+
+// Random rays: connected, one cell per major-axis step, each cell the true line's rounded minor
+// coordinate, and the reversed ray is the same list reversed.
+TEST(RayCells, RandomRaysAreDigitalLinesAndReverseExactly) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coord(-40, 40);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const CellIndex a{coord(rng), coord(rng)};
+    const CellIndex b{coord(rng), coord(rng)};
+    const Cells cells = RayCells(a, b);
+    const int dx = b.x - a.x;
+    const int dy = b.y - a.y;
+    const int n = std::max(std::abs(dx), std::abs(dy));
+    ASSERT_EQ(static_cast<int>(cells.size()), n + 1);
+    EXPECT_EQ(cells.front(), a);
+    EXPECT_EQ(cells.back(), b);
+    for (int k = 0; k < n; ++k) {
+      EXPECT_LE(std::abs(cells[k + 1].x - cells[k].x), 1);
+      EXPECT_LE(std::abs(cells[k + 1].y - cells[k].y), 1);
+      const double t = static_cast<double>(k) / n;
+      EXPECT_LE(std::abs(cells[k].x - (a.x + t * dx)), 0.5 + 1e-9);
+      EXPECT_LE(std::abs(cells[k].y - (a.y + t * dy)), 0.5 + 1e-9);
+    }
+    EXPECT_EQ(RayCells(b, a), Reversed(cells));
+  }
+}
+
+TEST(OccupancyGrid, CellGeometryAndProbability) {
+  OccupancyGrid grid({.resolution_m = 0.05});
+  EXPECT_EQ(grid.WorldToCell({0.0, 0.0}), (CellIndex{0, 0}));
+  EXPECT_EQ(grid.WorldToCell({0.049, 0.051}), (CellIndex{0, 1}));
+  EXPECT_EQ(grid.WorldToCell({-0.001, -0.051}), (CellIndex{-1, -2}));
+  EXPECT_TRUE(grid.CellCenter({-1, 2}).isApprox(Eigen::Vector2d(-0.025, 0.125)));
+  EXPECT_EQ(grid.WorldToCell(grid.CellCenter({-7, 13})), (CellIndex{-7, 13}));
+  EXPECT_DOUBLE_EQ(grid.Probability({5, 5}), 0.5);
+  EXPECT_FALSE(grid.IsKnown({5, 5}));
+  grid.Update({5, 5}, 2.0f);
+  EXPECT_DOUBLE_EQ(grid.Probability({5, 5}), 1.0 - 1.0 / (1.0 + std::exp(2.0)));
+}
+
+TEST(OccupancyGrid, UpdatesAreClamped) {
+  OccupancyGrid grid({.log_odds_min = -2.0f, .log_odds_max = 3.0f});
+  grid.Update({1, 1}, 2.5f);
+  grid.Update({1, 1}, 2.5f);
+  EXPECT_FLOAT_EQ(grid.LogOdds({1, 1}), 3.0f);
+  grid.Update({1, 1}, -0.5f);
+  EXPECT_FLOAT_EQ(grid.LogOdds({1, 1}), 2.5f);
+  grid.Update({1, 1}, -100.0f);
+  EXPECT_FLOAT_EQ(grid.LogOdds({1, 1}), -2.0f);
+}
+
+TEST(OccupancyGrid, BoundsFollowTheWrittenCells) {
+  OccupancyGrid grid;
+  EXPECT_GT(grid.min_cell().x, grid.max_cell().x);
+  EXPECT_EQ(grid.TileCount(), 0u);
+  grid.Update({3, -2}, 0.1f);
+  EXPECT_EQ(grid.min_cell(), (CellIndex{3, -2}));
+  EXPECT_EQ(grid.max_cell(), (CellIndex{3, -2}));
+  grid.Update({-5, 7}, 0.1f);
+  grid.Update({1, 0}, 0.1f);
+  EXPECT_EQ(grid.min_cell(), (CellIndex{-5, -2}));
+  EXPECT_EQ(grid.max_cell(), (CellIndex{3, 7}));
+}
+
+// Writes far away in every direction re-table the tiles; every value written before survives.
+TEST(OccupancyGrid, GrowthInAllDirectionsPreservesValues) {
+  OccupancyGrid grid({.log_odds_min = -1000.0f, .log_odds_max = 1000.0f});
+  const std::vector<CellIndex> cells = {{0, 0},      {1, 1},      {-1, -1},    {63, 64},
+                                        {-64, -65},  {-500, -700}, {900, 1200}, {-3000, 5},
+                                        {4000, -17}, {7, -9000},  {-2, 8000},  {-6000, -6000}};
+  std::map<std::pair<int, int>, float> written;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const float value = static_cast<float>(i + 1);
+    grid.Update(cells[i], value);
+    written[{cells[i].x, cells[i].y}] = value;
+    for (const auto& [xy, v] : written) {
+      ASSERT_EQ(grid.LogOdds({xy.first, xy.second}), v) << "after writing cell " << i;
+    }
+  }
+  EXPECT_EQ(grid.LogOdds({2, 2}), 0.0f);
+  EXPECT_EQ(grid.LogOdds({-500, -699}), 0.0f);
+  EXPECT_EQ(grid.LogOdds({100000, -100000}), 0.0f);
+  // Tiles: (0,0) (-1,-1) (0,1) (-1,-2) and one per far cell.
+  EXPECT_EQ(grid.TileCount(), 11u);
+}
+
+TEST(OccupancyGrid, CopyOnWriteUnsharesOnlyTheWrittenTile) {
+  OccupancyGrid original;
+  original.Update({0, 0}, 1.0f);
+  original.Update({100, 0}, 1.5f);
+  original.Update({0, -100}, -1.0f);
+  ASSERT_EQ(original.TileCount(), 3u);
+  EXPECT_EQ(original.SharedTileCount(), 0u);
+
+  OccupancyGrid copy = original;
+  EXPECT_EQ(original.SharedTileCount(), 3u);
+  EXPECT_EQ(copy.SharedTileCount(), 3u);
+
+  copy.Update({101, 5}, 2.0f);
+  EXPECT_EQ(copy.SharedTileCount(), 2u);
+  EXPECT_EQ(original.SharedTileCount(), 2u);
+  EXPECT_FLOAT_EQ(copy.LogOdds({101, 5}), 2.0f);
+  EXPECT_FLOAT_EQ(copy.LogOdds({100, 0}), 1.5f);  // the unshared tile kept its old cells
+  EXPECT_EQ(original.LogOdds({101, 5}), 0.0f);
+  EXPECT_FLOAT_EQ(original.LogOdds({100, 0}), 1.5f);
+  EXPECT_EQ(original.min_cell(), (CellIndex{0, -100}));
+  EXPECT_EQ(original.max_cell(), (CellIndex{100, 0}));
+
+  // Growing the copy's table moves tile pointers without unsharing them.
+  copy.Update({-5000, 5000}, 1.0f);
+  EXPECT_EQ(copy.TileCount(), 4u);
+  EXPECT_EQ(copy.SharedTileCount(), 2u);
+  EXPECT_EQ(original.TileCount(), 3u);
+  EXPECT_EQ(original.LogOdds({-5000, 5000}), 0.0f);
+
+  // Writing the original's side of a shared tile unshares it as well; the copy is unchanged.
+  original.Update({0, 0}, 1.0f);
+  EXPECT_EQ(original.SharedTileCount(), 1u);
+  EXPECT_FLOAT_EQ(original.LogOdds({0, 0}), 2.0f);
+  EXPECT_FLOAT_EQ(copy.LogOdds({0, 0}), 1.0f);
+}
+
+// Log-odds expected after the given free and hit cells have been updated, in update order.
+std::map<std::pair<int, int>, float> ExpectedLogOdds(const Cells& free, const Cells& hits,
+                                                     const OccupancyGridParams& p) {
+  std::map<std::pair<int, int>, float> expected;
+  for (const CellIndex& c : free) expected[{c.x, c.y}] += p.log_odds_miss;
+  for (const CellIndex& c : hits) expected[{c.x, c.y}] += p.log_odds_hit;
+  return expected;
+}
+
+void ExpectGridEquals(const OccupancyGrid& grid,
+                      const std::map<std::pair<int, int>, float>& expected) {
+  for (int y = -12; y <= 12; ++y) {
+    for (int x = -12; x <= 12; ++x) {
+      const auto it = expected.find({x, y});
+      const float want = it == expected.end() ? 0.0f : it->second;
+      EXPECT_FLOAT_EQ(grid.LogOdds({x, y}), want) << "cell (" << x << ", " << y << ")";
+    }
+  }
+}
+
+LaserScan ThreeBeamScan(std::vector<float> ranges) {
+  LaserScan scan;
+  scan.angle_min_rad = -M_PI / 2.0;
+  scan.angle_increment_rad = M_PI / 2.0;
+  scan.max_range_m = 10.0;
+  scan.ranges_m = std::move(ranges);
+  return scan;
+}
+
+TEST(InsertScan, ThreeBeamsMarkExactlyTheirCells) {
+  OccupancyGrid grid({.resolution_m = 1.0});
+  InsertScan(grid, Pose2(0.5, 0.5, 0.0), ThreeBeamScan({3.0f, 4.0f, 2.0f}));
+  // -y beam ends in (0,-3), +x beam in (4,0), +y beam in (0,2); the laser cell is free 3 times.
+  const Cells free = {{0, 0}, {0, -1}, {0, -2}, {0, 0}, {1, 0}, {2, 0}, {3, 0}, {0, 0}, {0, 1}};
+  const Cells hits = {{0, -3}, {4, 0}, {0, 2}};
+  ExpectGridEquals(grid, ExpectedLogOdds(free, hits, grid.params()));
+  EXPECT_EQ(grid.min_cell(), (CellIndex{0, -3}));
+  EXPECT_EQ(grid.max_cell(), (CellIndex{4, 2}));
+}
+
+TEST(InsertScan, TheLaserHeadingRotatesTheBeams) {
+  OccupancyGrid grid({.resolution_m = 0.5});
+  // Heading +90°: the beams point +x, +y and -x; the laser is in cell (-3, 2).
+  InsertScan(grid, Pose2(-1.25, 1.25, M_PI / 2.0), ThreeBeamScan({1.0f, 1.5f, 2.0f}));
+  const Cells free = {{-3, 2}, {-2, 2}, {-3, 2}, {-3, 3}, {-3, 4}, {-3, 2}, {-4, 2}, {-5, 2},
+                      {-6, 2}};
+  const Cells hits = {{-1, 2}, {-3, 5}, {-7, 2}};
+  ExpectGridEquals(grid, ExpectedLogOdds(free, hits, grid.params()));
+}
+
+TEST(InsertScan, NoReturnAndCutBeamsMarkFreeSpaceUpToTheUsableRangeOnly) {
+  OccupancyGrid grid({.resolution_m = 1.0});
+  LaserScan scan;
+  scan.angle_min_rad = 0.0;
+  scan.angle_increment_rad = M_PI / 2.0;
+  scan.max_range_m = 10.0;
+  // +x: no return (max range); +y: a return beyond the usable range of 3.2 m.
+  scan.ranges_m = {10.0f, 5.0f};
+  InsertScan(grid, Pose2(0.5, 0.5, 0.0), scan, {.usable_range_m = 3.2});
+  // Both end at 3.7 m from the cell corner, in cells (3,0) and (0,3), which stay unknown.
+  const Cells free = {{0, 0}, {1, 0}, {2, 0}, {0, 0}, {0, 1}, {0, 2}};
+  ExpectGridEquals(grid, ExpectedLogOdds(free, {}, grid.params()));
+}
+
+TEST(InsertScan, InvalidRangesAreSkipped) {
+  OccupancyGrid grid({.resolution_m = 1.0});
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  InsertScan(grid, Pose2(0.5, 0.5, 0.0), ThreeBeamScan({nan, inf, 0.0f}));
+  InsertScan(grid, Pose2(0.5, 0.5, 0.0), ThreeBeamScan({-1.0f, -inf, nan}));
+  EXPECT_EQ(grid.TileCount(), 0u);
+  EXPECT_GT(grid.min_cell().x, grid.max_cell().x);
+}
+
+}  // namespace
+}  // namespace slamkit
