@@ -1,0 +1,133 @@
+#include "slamkit/io/carmen_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "carmen_records.hpp"
+#include "slamkit/core/angle.hpp"
+#include "slamkit/io/error.hpp"
+
+namespace slamkit {
+namespace {
+
+// A timestamp may fall behind its stream's previous one by this much (rounding in the log).
+constexpr double kTimeToleranceS = 1e-6;
+constexpr double kNoTimestampS = 1e-6;
+
+// The latest timestamp of one stream (ODOM, or scans) and its line, for the ordering check.
+struct StreamClock {
+  double t_s = 0.0;
+  int line = 0;  // 0: no record yet
+};
+
+// Turns the records of one log into a CarmenLog, line by line.
+class CarmenParser {
+ public:
+  CarmenParser(const std::filesystem::path& path, const CarmenReadOptions& options)
+      : file_(path.string()), options_(options) {
+    laser_.max_range_m = options.default_max_range_m;
+  }
+
+  // One non-blank, non-comment line; throws InputError for a malformed one.
+  void Parse(std::span<const std::string_view> tokens, int line) {
+    const std::string_view kind = tokens[0];
+    const carmen::Fields fields(fmt::format("{}:{}", file_, line), kind, tokens.subspan(1));
+    if (kind == "ODOM") {
+      const StampedPose odom = carmen::ParseOdom(fields);
+      Tick(fields, odom.t_s, line, &odom_clock_);
+      log_.odometry.push_back(odom);
+    } else if (kind == "FLASER") {
+      AddScan(fields, carmen::ParseFlaser(fields, laser_), line);
+    } else if (kind == "ROBOTLASER1") {
+      AddScan(fields, carmen::ParseRobotLaser1(fields), line);
+    } else if (kind == "PARAM") {
+      auto [name, value] = carmen::ParseParam(fields, &laser_);
+      log_.params[std::move(name)] = std::move(value);
+    }
+  }
+
+  CarmenLog Finish();
+
+ private:
+  void AddScan(const carmen::Fields& fields, LaserScan scan, int line) {
+    Tick(fields, scan.t_s, line, &scan_clock_);
+    log_.scans.push_back(std::move(scan));
+  }
+
+  // Checks that t_s does not go back in its stream, then advances the stream's clock.
+  void Tick(const carmen::Fields& fields, double t_s, int line, StreamClock* clock) {
+    // 0 (or, in GMapping-written logs, a denormal like 1.08499e-42) stands for "no timestamp".
+    if (t_s < kNoTimestampS) return;
+    if (clock->line > 0 && t_s < clock->t_s - kTimeToleranceS) {
+      if (t_s < clock->t_s - options_.max_time_step_back_s) {
+        fields.Fail({"timestamp"}, fmt::format("time goes backwards ({:.6f} < {:.6f} on line {})",
+                                               t_s, clock->t_s, clock->line));
+      }
+      ++log_.time_steps_back;
+    }
+    *clock = {t_s, line};
+  }
+
+  std::string file_;
+  CarmenReadOptions options_;
+  carmen::FrontLaser laser_;
+  StreamClock odom_clock_;
+  StreamClock scan_clock_;
+  CarmenLog log_;
+};
+
+// The pose at t_s between the records of `odometry` (sorted by time, not empty) that bracket it:
+// linear in x and y, along the shorter arc in heading; the nearest record outside their span.
+Pose2 InterpolateOdometry(const Trajectory& odometry, double t_s) {
+  const auto after = std::upper_bound(
+      odometry.begin(), odometry.end(), t_s,
+      [](double t, const StampedPose& record) { return t < record.t_s; });
+  if (after == odometry.begin()) return after->pose;
+  if (after == odometry.end()) return odometry.back().pose;
+  const StampedPose& a = *(after - 1);
+  const StampedPose& b = *after;
+  const double s = (t_s - a.t_s) / (b.t_s - a.t_s);  // b.t_s > t_s >= a.t_s
+  return Pose2(a.pose.x() + s * (b.pose.x() - a.pose.x()),
+               a.pose.y() + s * (b.pose.y() - a.pose.y()),
+               a.pose.theta() + s * WrapAngle(b.pose.theta() - a.pose.theta()));
+}
+
+CarmenLog CarmenParser::Finish() {
+  if (!log_.odometry.empty() && !options_.odometry_from_scan_fields) {
+    Trajectory sorted = log_.odometry;
+    std::stable_sort(sorted.begin(), sorted.end(),
+                     [](const StampedPose& a, const StampedPose& b) { return a.t_s < b.t_s; });
+    for (LaserScan& scan : log_.scans) scan.odometry = InterpolateOdometry(sorted, scan.t_s);
+  }
+  return std::move(log_);
+}
+
+}  // namespace
+
+CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptions& options) {
+  carmen::LineReader reader(path);
+  CarmenParser parser(path, options);
+  int skipped = 0;
+  std::vector<std::string_view> tokens;
+  std::string_view line;
+  while (reader.Next(&line)) {
+    carmen::Tokenize(line, &tokens);
+    if (tokens.empty() || tokens[0].starts_with('#')) continue;
+    try {
+      parser.Parse(tokens, reader.line_number());
+    } catch (const InputError&) {
+      if (!options.skip_bad_lines) throw;
+      ++skipped;
+    }
+  }
+  CarmenLog log = parser.Finish();
+  log.skipped_lines = skipped;
+  return log;
+}
+
+}  // namespace slamkit

@@ -1,0 +1,50 @@
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string_view>
+#include <vector>
+
+#include "carmen_records.hpp"
+#include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/io/error.hpp"
+
+namespace slamkit {
+namespace {
+
+constexpr const char* kFieldNames[] = {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"};
+// z, roll and pitch of a planar relation: zero up to rounding.
+constexpr double kOutOfPlaneTolerance = 1e-6;
+
+PoseRelation ParseRelation(const carmen::Fields& fields) {
+  fields.Expect(std::size(kFieldNames), kFieldNames);
+  double values[std::size(kFieldNames)];
+  for (std::size_t i = 0; i < std::size(kFieldNames); ++i) {
+    values[i] = fields.Number(i, {kFieldNames[i]});
+  }
+  for (std::size_t i : {4, 5, 6}) {
+    if (std::abs(values[i]) > kOutOfPlaneTolerance) {
+      fields.Fail({kFieldNames[i]},
+                  fmt::format("must be 0 in a planar relation ('{}')", fields.Text(i)));
+    }
+  }
+  return {values[0], values[1], Pose2(values[2], values[3], values[7])};
+}
+
+}  // namespace
+
+std::vector<PoseRelation> ReadRelations(const std::filesystem::path& path) {
+  carmen::LineReader reader(path);
+  std::vector<PoseRelation> relations;
+  std::vector<std::string_view> tokens;
+  std::string_view line;
+  while (reader.Next(&line)) {
+    carmen::Tokenize(line, &tokens);
+    if (tokens.empty() || tokens[0].starts_with('#')) continue;
+    const carmen::Fields fields(fmt::format("{}:{}", path.string(), reader.line_number()), "",
+                                tokens);
+    relations.push_back(ParseRelation(fields));
+  }
+  return relations;
+}
+
+}  // namespace slamkit

@@ -24,6 +24,15 @@ void WriteTumTrajectory(const std::filesystem::path& path, const Trajectory& tra
   WriteFileAtomically(path, text);
 }
 
+void WritePoseText(const std::filesystem::path& path, const Trajectory& trajectory) {
+  std::string text;
+  for (const StampedPose& p : trajectory) {
+    fmt::format_to(std::back_inserter(text), "{:.6f} {} {} {}\n", p.t_s, p.pose.x(), p.pose.y(),
+                   p.pose.theta());
+  }
+  WriteFileAtomically(path, text);
+}
+
 void WriteLandmarkMapCsv(const std::filesystem::path& path, const LandmarkMap& map) {
   std::string text = "source_id,x_m,y_m,cov_xx,cov_xy,cov_yy\n";
   for (const MappedLandmark& l : map.landmarks) {

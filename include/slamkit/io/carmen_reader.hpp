@@ -13,21 +13,54 @@ namespace slamkit {
 struct CarmenReadOptions {
   // Skip malformed lines (counting them) instead of failing on the first one.
   bool skip_bad_lines = false;
+  // A record whose timestamp is earlier than the previous record of its stream (ODOM, or scans)
+  // by more than this is malformed; smaller steps back are accepted and counted. Real logs need
+  // the slack: intel.clf's clock jitters back by up to 0.9 s (602 ODOM, 631 FLASER records)
+  // although its records are in causal order. A timestamp below 1e-6 s means "none" (the
+  // GMapping-written logs put `ODOM ... 0 pippo 0`, or a denormal, after every scan): unchecked.
+  double max_time_step_back_s = 1.0;
+  // Take LaserScan::odometry from the scan record's own odometry fields (FLASER odom_x odom_y
+  // odom_theta, ROBOTLASER1 robot pose), the default; false interpolates the ODOM records at the
+  // scan's timestamp instead. In intel.clf the fields are exactly the latest ODOM record before
+  // the scan in the file, whereas interpolating by its jittery timestamps is off by more than
+  // 17 cm or 6.7° for 1 % of the scans.
+  bool odometry_from_scan_fields = true;
+  // A FLASER scan's max_range_m when no PARAM laser_front_laser_max_range or
+  // robot_front_laser_max gives it (81.83 m is the no-return reading of the Intel log).
+  double default_max_range_m = 81.83;
 };
 
-// A CARMEN log as one time-ordered stream: scans with the odometry interpolated at each scan's
-// timestamp, the raw odometry records, and the PARAM settings.
+// A CARMEN log: the scans in log order with the odometry at each scan's timestamp, the raw
+// odometry records, and the PARAM settings. Where timestamps are monotonic (the default options
+// ensure it) log order is time order.
 struct CarmenLog {
   std::vector<LaserScan> scans;
   Trajectory odometry;                        // the ODOM records in log order
-  std::map<std::string, std::string> params;  // PARAM name value
+  std::map<std::string, std::string> params;  // PARAM name value (the last one of a name)
   int skipped_lines = 0;                      // with skip_bad_lines
+  int time_steps_back = 0;                    // records accepted a little back in time
 };
 
-// Reads ODOM, FLASER, ROBOTLASER1 and PARAM records (other records and `#` lines are ignored);
-// gzip-compressed files (by content, not name) are read transparently. Throws InputError naming
-// the file, line and field for a wrong beam count, a non-number, NaN/inf, or time going backwards,
-// unless options.skip_bad_lines.
+// Reads ODOM, FLASER, ROBOTLASER1 and PARAM records (other records, blank lines and `#` lines are
+// ignored); gzip-compressed files (by content, not name) are read transparently. Throws
+// InputError naming the file, line and field for a wrong beam count, a non-number, NaN/inf, or
+// time going backwards, unless options.skip_bad_lines (then the line is skipped and counted).
+// A missing, unreadable or truncated gzip file is an InputError naming the file.
+//
+// Scan geometry. FLASER: the field of view is PARAM laser_front_laser_fov (degrees as CARMEN
+// documents, or radians when at most 2π, as in csail-corrected.log.gz), else π, centred on the
+// heading: angle_min_rad = -fov/2; with n beams the increment is fov/n for even n (180 beams at
+// 1°, the last one at +89°) and fov/(n-1) for odd n (181 or 361 beams, both ends included).
+// max_range_m is PARAM laser_front_laser_max_range, else robot_front_laser_max, else
+// options.default_max_range_m; laser_offset is (PARAM robot_frontlaser_offset, 0, 0).
+// logged_pose is the record's x y theta. ROBOTLASER1: angle_min_rad = start_angle, the increment
+// is angular_resolution, max_range_m = max_range, logged_pose is the robot pose and laser_offset
+// the laser pose seen from the robot pose.
+//
+// Odometry at a scan: with ODOM records (and not odometry_from_scan_fields), linear interpolation
+// between the ODOM records (ordered by timestamp) that bracket the scan's timestamp, the heading
+// along the shorter arc; the first or last record's pose outside their span. Without ODOM
+// records, the scan record's odometry fields.
 CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptions& options = {});
 
 // One relation of Kümmerle et al. 2009: the pose at t2_s expressed in the frame of the pose at
@@ -39,7 +72,8 @@ struct PoseRelation {
 };
 
 // Reads `t1 t2 x y z roll pitch yaw` lines (z, roll and pitch must be 0 for a 2D log within
-// 1e-6). Throws InputError naming the file, line and field.
+// 1e-6), delta = (x, y, yaw); blank and `#` lines are ignored, gzip is read transparently. Throws
+// InputError naming the file, line and field (a wrong field count, a non-number, NaN/inf).
 std::vector<PoseRelation> ReadRelations(const std::filesystem::path& path);
 
 }  // namespace slamkit

@@ -12,6 +12,8 @@ namespace slamkit {
 
 // TUM RGB-D trajectory format: `t x y z qx qy qz qw` per line, z = 0, yaw as a quaternion about z.
 void WriteTumTrajectory(const std::filesystem::path& path, const Trajectory& trajectory);
+// One pose per line as `t x y theta` (t as in the source log, theta in radians).
+void WritePoseText(const std::filesystem::path& path, const Trajectory& trajectory);
 // Estimated landmarks as CSV: `source_id,x_m,y_m,cov_xx,cov_xy,cov_yy` with a header line.
 void WriteLandmarkMapCsv(const std::filesystem::path& path, const LandmarkMap& map);
 // True landmarks as CSV: `id,x_m,y_m` with a header line (the format ReadLandmarkCsv reads).
