@@ -9,5 +9,6 @@ namespace slamkit::app {
 void RegisterMonteCarlo(CLI::App& app, int& exit_code);
 void RegisterDemo(CLI::App& app, int& exit_code);
 void RegisterRun(CLI::App& app, int& exit_code);
+void RegisterGrid(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -37,6 +37,14 @@ const Pose2& PoseAt(const Trajectory& trajectory, double t_s, double tolerance_s
   return trajectory[i].pose;
 }
 
+// Logs whose clock jitters (intel.clf) give trajectories slightly out of time order.
+Trajectory SortedByTime(const Trajectory& trajectory) {
+  Trajectory sorted = trajectory;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.t_s < b.t_s; });
+  return sorted;
+}
+
 }  // namespace
 
 int FindPoseAt(const Trajectory& trajectory, double t_s, double time_tolerance_s) {
@@ -56,9 +64,10 @@ int FindPoseAt(const Trajectory& trajectory, double t_s, double time_tolerance_s
 }
 
 // Kümmerle et al. 2009, Eq. 2 with the translational and rotational parts kept apart.
-RelationErrorStats EvaluateRelations(const Trajectory& estimate,
+RelationErrorStats EvaluateRelations(const Trajectory& unsorted_estimate,
                                      std::span<const PoseRelation> relations,
                                      double time_tolerance_s) {
+  const Trajectory estimate = SortedByTime(unsorted_estimate);
   std::vector<double> trans, rot;
   trans.reserve(relations.size());
   rot.reserve(relations.size());
@@ -73,9 +82,10 @@ RelationErrorStats EvaluateRelations(const Trajectory& estimate,
   return {static_cast<int>(relations.size()), t.mean, t.std, a.mean, a.std};
 }
 
-AbsoluteTrajectoryErrorStats AbsoluteTrajectoryError(const Trajectory& estimate,
+AbsoluteTrajectoryErrorStats AbsoluteTrajectoryError(const Trajectory& unsorted_estimate,
                                                      const Trajectory& reference,
                                                      double time_tolerance_s) {
+  const Trajectory estimate = SortedByTime(unsorted_estimate);
   std::vector<Eigen::Vector2d> from, to;
   for (const StampedPose& ref : reference) {
     const int i = FindPoseAt(estimate, ref.t_s, time_tolerance_s);

@@ -20,15 +20,14 @@ struct RelationErrorStats {
 // For each relation, the estimated relative pose δ = x(t1)⁻¹ ⊕ x(t2) is compared with the
 // reference δ*: the error is δ*⁻¹ ⊕ δ, its translation norm and |rotation| are averaged. Poses are
 // looked up by timestamp (nearest within `time_tolerance_s`); a relation whose time has no pose
-// throws std::invalid_argument naming it. `estimate` must be sorted by time.
+// throws std::invalid_argument naming it. Poses need not be in time order.
 RelationErrorStats EvaluateRelations(const Trajectory& estimate,
                                      std::span<const PoseRelation> relations,
                                      double time_tolerance_s = 1e-3);
 
 // Absolute trajectory error: positions of `estimate` and `reference` paired by timestamp (nearest
 // within `time_tolerance_s`, unpaired poses skipped), the best rigid alignment of the estimate
-// onto the reference, then the RMS, mean and max of the remaining position errors. Both
-// trajectories must be sorted by time.
+// onto the reference, then the RMS, mean and max of the remaining position errors.
 struct AbsoluteTrajectoryErrorStats {
   int count = 0;
   double rmse_m = 0.0;

@@ -1,0 +1,35 @@
+#pragma once
+
+#include <functional>
+
+#include <nlohmann/json.hpp>
+
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/trajectory_errors.hpp"
+#include "slamkit/filters/rbpf_grid_slam.hpp"
+#include "slamkit/io/carmen_reader.hpp"
+
+namespace slamkit {
+
+// RbpfGridSlam over a whole CARMEN log.
+struct GridRunResult {
+  Trajectory trajectory;  // one pose per scan of the log, t as in the log
+  OccupancyGrid map;      // the best particle's
+  int scans = 0;
+  int updates = 0;
+  int resamples = 0;
+  double wall_time_s = 0.0;
+};
+
+// `progress(done, total)` is called every few scans from the calling thread.
+GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
+                          const std::function<void(int, int)>& progress = {});
+
+// metrics.json of a grid run (README's output contract); `relations` may be null.
+nlohmann::json GridMetrics(const GridRunResult& result, const RbpfGridSlamParams& params,
+                           const RelationErrorStats* relations, double peak_rss_mib);
+
+// Peak resident memory of this process so far, in MiB.
+double PeakRssMib();
+
+}  // namespace slamkit

@@ -1,0 +1,79 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/filters/scan_matcher.hpp"
+#include "slamkit/maps/occupancy_grid.hpp"
+#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/models/odometry_sampling.hpp"
+
+namespace slamkit {
+
+struct RbpfGridSlamParams {
+  int particles = 30;
+  std::uint64_t seed = 1;
+  // The filter updates once the odometry has moved this far since its last update (GMapping's
+  // linearUpdate and angularUpdate); scans in between only extend the trajectory.
+  double linear_update_m = 1.0;
+  double angular_update_rad = 0.5;
+  // Resample when N_eff / N falls below this.
+  double resample_threshold = 0.5;
+  // Log-likelihoods are multiplied by gain / particles before normalising (GMapping's ogain = 3
+  // gives gain 1/3): it smooths the weights so that one scan does not decide the whole set.
+  double likelihood_gain = 1.0 / 3.0;
+  OdometryNoiseParams motion;
+  ScanMatcherParams matcher;
+  OccupancyGridParams grid;
+  ScanInsertionParams insertion;
+};
+
+// Rao-Blackwellised particle filter on occupancy grids (GMapping-like; SPEC S4): each particle
+// holds a pose, a log-weight, its own map and its path. The proposal is the odometry sample
+// refined by scan matching against the particle's map; weights come from the scan likelihood at
+// the refined pose; resampling is systematic and adaptive on N_eff. Maps share unchanged tiles
+// (copy-on-write), so resampling copies are cheap. Particles are processed in parallel; each
+// draws from its own Rng stream, so a seed fixes the result whatever the thread count.
+class RbpfGridSlam {
+ public:
+  explicit RbpfGridSlam(const RbpfGridSlamParams& params);
+  ~RbpfGridSlam();
+
+  // Takes the next scan (with its odometry); returns whether the filter updated on it.
+  bool ProcessScan(const LaserScan& scan);
+
+  int BestParticle() const;
+  const OccupancyGrid& BestMap() const;
+  // The best particle's path: one pose per processed scan (t = the scan's), poses between
+  // updates carried forward by odometry from the particle's pose at the last update.
+  Trajectory BestTrajectory() const;
+  Pose2 CurrentPose() const;
+  int updates() const { return updates_; }
+  int resamples() const { return resamples_; }
+  double last_neff() const { return last_neff_; }
+
+ private:
+  struct Particle;
+  struct PathNode;
+  void Initialise(const LaserScan& scan);
+  void MoveAndWeigh(const LaserScan& scan, const Pose2& delta);
+  void ResampleIfNeeded();
+  void InsertIntoMaps(const LaserScan& scan, int scan_index);
+
+  RbpfGridSlamParams params_;
+  Rng rng_;
+  std::vector<Particle> particles_;
+  struct ScanRecord {
+    double t_s;
+    Pose2 odometry;
+  };
+  std::vector<ScanRecord> scans_;
+  Pose2 last_update_odometry_;
+  int updates_ = 0;
+  int resamples_ = 0;
+  double last_neff_ = 0.0;
+};
+
+}  // namespace slamkit

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/maps/occupancy_grid.hpp"
+#include "slamkit/models/laser_scan.hpp"
+
+namespace slamkit {
+
+struct ScanMatcherParams {
+  double usable_range_m = 30.0;    // beams longer than this are not matched
+  int beam_stride = 1;             // match every k-th beam
+  int search_cells = 1;            // window half-width around each beam end, in cells
+  double score_sigma_m = 0.05;     // width of each beam's score exp(−d²/σ²)
+  double likelihood_sigma_m = 0.075;  // σ of the per-beam Gaussian in the scan likelihood
+  double linear_step_m = 0.05;     // initial hill-climbing steps (halved when stuck)
+  double angular_step_rad = 0.05;
+  int refinements = 5;             // how many times the steps are halved
+  double min_score_fraction = 0.15;  // accept a match only if score ≥ this × beams matched
+  // A coarse pass runs first, with a wider window and score, on every `coarse_beam_stride`-th
+  // beam: it pulls guesses that are several cells off into the fine pass's reach.
+  int coarse_search_cells = 3;
+  double coarse_score_sigma_m = 0.15;
+  int coarse_beam_stride = 3;
+};
+
+// The beams of one scan that can be matched, as points in the robot frame (the laser offset
+// already applied), with the unit direction of each beam (for the free-space test).
+struct ScanPoints {
+  std::vector<Eigen::Vector2d> ends;
+  std::vector<Eigen::Vector2d> directions;
+};
+
+ScanPoints PrepareScan(const LaserScan& scan, const ScanMatcherParams& params);
+
+struct MatchQuality {
+  double score = 0.0;           // Σ exp(−d²/σ²) over beams (larger is better)
+  double log_likelihood = 0.0;  // Σ log N(d; 0, σ_l) over beams, up to a constant
+  int matched = 0;              // beams that found an occupied cell in their window
+};
+
+// Evaluates `points` at robot pose `pose` against `grid`: each beam end looks for the nearest
+// occupied cell in a small window whose neighbour toward the sensor is free (GMapping's test),
+// and d is the distance from the end to that cell's centre.
+MatchQuality EvaluatePose(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& pose,
+                          const ScanMatcherParams& params);
+
+struct MatchResult {
+  Pose2 pose;
+  MatchQuality quality;
+  bool accepted = false;  // the score passed min_score_fraction
+};
+
+// Hill climbing from `initial` on the score, with six moves (±x, ±y, ±θ) and step halving;
+// a coarse pass first, then the fine one from its result.
+MatchResult MatchScan(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& initial,
+                      const ScanMatcherParams& params);
+
+}  // namespace slamkit

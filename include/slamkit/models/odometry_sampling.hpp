@@ -1,0 +1,24 @@
+#pragma once
+
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/core/rng.hpp"
+
+namespace slamkit {
+
+// Odometry motion noise: standard deviations that grow with the distance and rotation travelled.
+// The names read "s<noise in><per motion in>": srt is translation noise per radian turned, str
+// rotation noise per metre driven. The defaults reproduce GMapping's behaviour with its ROS
+// defaults (whose code applies its `str` to translation and `srt` to rotation).
+struct OdometryNoiseParams {
+  double srr = 0.1;  // m per m
+  double srt = 0.1;  // m per rad
+  double str = 0.2;  // rad per m
+  double stt = 0.2;  // rad per rad
+};
+
+// Draws the pose reached from `pose` after the odometry increment `delta` (robot frame), with
+// each component of the increment perturbed by zero-mean Gaussian noise scaled as above.
+Pose2 SampleOdometryMotion(const Pose2& pose, const Pose2& delta, const OdometryNoiseParams& noise,
+                           Rng& rng);
+
+}  // namespace slamkit

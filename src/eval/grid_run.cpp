@@ -1,0 +1,57 @@
+#include "slamkit/eval/grid_run.hpp"
+
+#include <sys/resource.h>
+
+#include <chrono>
+
+namespace slamkit {
+
+GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
+                          const std::function<void(int, int)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  RbpfGridSlam slam(params);
+  const int total = static_cast<int>(log.scans.size());
+  for (int i = 0; i < total; ++i) {
+    slam.ProcessScan(log.scans[i]);
+    if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
+  }
+  GridRunResult out;
+  out.trajectory = slam.BestTrajectory();
+  out.map = slam.BestMap();
+  out.scans = total;
+  out.updates = slam.updates();
+  out.resamples = slam.resamples();
+  out.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& params,
+                           const RelationErrorStats* relations, double peak_rss_mib) {
+  nlohmann::json j = {{"scans", r.scans},
+                      {"updates", r.updates},
+                      {"resamples", r.resamples},
+                      {"particles", params.particles},
+                      {"seed", params.seed},
+                      {"linear_update_m", params.linear_update_m},
+                      {"angular_update_rad", params.angular_update_rad},
+                      {"wall_time_s", r.wall_time_s},
+                      {"scans_per_s", r.wall_time_s > 0 ? r.scans / r.wall_time_s : 0.0},
+                      {"peak_rss_mib", peak_rss_mib}};
+  if (relations) {
+    j["relations"] = relations->count;
+    j["relations_trans_mean_m"] = relations->trans_mean_m;
+    j["relations_trans_std_m"] = relations->trans_std_m;
+    j["relations_rot_mean_deg"] = relations->rot_mean_deg;
+    j["relations_rot_std_deg"] = relations->rot_std_deg;
+  }
+  return j;
+}
+
+double PeakRssMib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+}  // namespace slamkit

@@ -1,0 +1,125 @@
+#include "slamkit/filters/scan_matcher.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace slamkit {
+
+ScanPoints PrepareScan(const LaserScan& scan, const ScanMatcherParams& params) {
+  ScanPoints points;
+  const int stride = std::max(1, params.beam_stride);
+  for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); i += stride) {
+    if (!scan.IsReturn(i) || scan.ranges_m[i] > params.usable_range_m) continue;
+    const double a = scan.BeamAngle(i);
+    const Eigen::Vector2d dir_laser(std::cos(a), std::sin(a));
+    points.ends.push_back(scan.laser_offset.TransformFrom(scan.ranges_m[i] * dir_laser));
+    points.directions.push_back(scan.laser_offset.rotation() * dir_laser);
+  }
+  return points;
+}
+
+namespace {
+
+// Squared distance from `end` to the nearest cell in the window that is occupied while the cell
+// one step back toward the sensor is free; infinity when there is none.
+double NearestHitDistanceSq(const OccupancyGrid& grid, const Eigen::Vector2d& end,
+                            const Eigen::Vector2d& direction, int window) {
+  const double r = grid.resolution();
+  const CellIndex c = grid.WorldToCell(end);
+  const CellIndex f = grid.WorldToCell(end - r * direction);
+  double best = std::numeric_limits<double>::infinity();
+  for (int dx = -window; dx <= window; ++dx) {
+    for (int dy = -window; dy <= window; ++dy) {
+      const CellIndex hit{c.x + dx, c.y + dy};
+      if (grid.LogOdds(hit) <= 0.0f) continue;
+      if (grid.LogOdds({f.x + dx, f.y + dy}) >= 0.0f) continue;
+      best = std::min(best, (grid.CellCenter(hit) - end).squaredNorm());
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+MatchQuality EvaluatePose(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& pose,
+                          const ScanMatcherParams& params) {
+  MatchQuality q;
+  const double inv_score = 1.0 / (params.score_sigma_m * params.score_sigma_m);
+  const double inv_like = 0.5 / (params.likelihood_sigma_m * params.likelihood_sigma_m);
+  // A beam with no hit in its window counts as far as the window reaches.
+  const double miss_sq = std::pow((params.search_cells + 1) * grid.resolution(), 2);
+  const Eigen::Matrix2d R = pose.rotation();
+  const Eigen::Vector2d t = pose.translation();
+  for (std::size_t i = 0; i < points.ends.size(); ++i) {
+    const double d_sq =
+        NearestHitDistanceSq(grid, R * points.ends[i] + t, R * points.directions[i],
+                             params.search_cells);
+    if (std::isfinite(d_sq)) {
+      ++q.matched;
+      q.score += std::exp(-d_sq * inv_score);
+      q.log_likelihood -= std::min(d_sq, miss_sq) * inv_like;
+    } else {
+      q.log_likelihood -= miss_sq * inv_like;
+    }
+  }
+  return q;
+}
+
+namespace {
+
+MatchResult HillClimb(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& initial,
+                      const ScanMatcherParams& params) {
+  MatchResult best{initial, EvaluatePose(grid, points, initial, params), false};
+  double lin = params.linear_step_m, ang = params.angular_step_rad;
+  int refinements = 0;
+  while (refinements <= params.refinements) {
+    const Pose2 from = best.pose;
+    const Pose2 moves[6] = {{from.x() + lin, from.y(), from.theta()},
+                            {from.x() - lin, from.y(), from.theta()},
+                            {from.x(), from.y() + lin, from.theta()},
+                            {from.x(), from.y() - lin, from.theta()},
+                            {from.x(), from.y(), from.theta() + ang},
+                            {from.x(), from.y(), from.theta() - ang}};
+    bool improved = false;
+    for (const Pose2& candidate : moves) {
+      const MatchQuality q = EvaluatePose(grid, points, candidate, params);
+      if (q.score > best.quality.score) {
+        best.pose = candidate;
+        best.quality = q;
+        improved = true;
+      }
+    }
+    if (!improved) {
+      lin *= 0.5;
+      ang *= 0.5;
+      ++refinements;
+    }
+  }
+  return best;
+}
+
+ScanPoints EveryNth(const ScanPoints& points, int n) {
+  ScanPoints out;
+  for (std::size_t i = 0; i < points.ends.size(); i += std::max(1, n)) {
+    out.ends.push_back(points.ends[i]);
+    out.directions.push_back(points.directions[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+MatchResult MatchScan(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& initial,
+                      const ScanMatcherParams& params) {
+  ScanMatcherParams coarse = params;
+  coarse.search_cells = params.coarse_search_cells;
+  coarse.score_sigma_m = params.coarse_score_sigma_m;
+  const Pose2 start =
+      HillClimb(grid, EveryNth(points, params.coarse_beam_stride), initial, coarse).pose;
+  MatchResult best = HillClimb(grid, points, start, params);
+  best.accepted = !points.ends.empty() &&
+                  best.quality.score >= params.min_score_fraction * double(points.ends.size());
+  return best;
+}
+
+}  // namespace slamkit
