@@ -20,13 +20,18 @@ struct GridOptions {
   std::string relations;
   std::string out;
   bool skip_bad_lines = false;
+  bool reference_from_log = false;
+  int max_scans = 0;
   RbpfGridSlamParams params;
 };
 
 int RunGridCommand(const GridOptions& o) {
   CarmenReadOptions read_options;
   read_options.skip_bad_lines = o.skip_bad_lines;
-  const CarmenLog log = ReadCarmenLog(o.log, read_options);
+  CarmenLog log = ReadCarmenLog(o.log, read_options);
+  if (o.max_scans > 0 && static_cast<int>(log.scans.size()) > o.max_scans) {
+    log.scans.resize(o.max_scans);
+  }
   if (log.skipped_lines > 0) fmt::print(stderr, "{}: skipped {} bad lines\n", o.log, log.skipped_lines);
   std::vector<PoseRelation> relations;
   if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
@@ -35,7 +40,12 @@ int RunGridCommand(const GridOptions& o) {
   const GridRunResult result =
       RunGridSlam(log, o.params, [progress](int done, int) { progress->Update(done); });
   std::optional<RelationErrorStats> errors;
+  if (o.max_scans > 0) relations = RelationsCovered(result.trajectory, relations);
   if (!relations.empty()) errors = EvaluateRelations(result.trajectory, relations);
+  std::optional<ReferenceComparison> reference;
+  if (o.reference_from_log) {
+    reference = CompareWithReference(result.trajectory, LoggedTrajectory(log));
+  }
 
   const std::filesystem::path dir(o.out);
   std::filesystem::create_directories(dir);
@@ -44,7 +54,8 @@ int RunGridCommand(const GridOptions& o) {
   WriteOccupancyGridPgm(dir / "map.pgm", result.map);
   WriteOccupancyGridPng(dir / "map.png", result.map);
   WriteJson(dir / "metrics.json",
-            GridMetrics(result, o.params, errors ? &*errors : nullptr, PeakRssMib()));
+            GridMetrics(result, o.params, errors ? &*errors : nullptr,
+                        reference ? &*reference : nullptr, PeakRssMib()));
 
   fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", o.log, result.scans,
              result.updates, result.resamples, o.params.particles);
@@ -56,6 +67,16 @@ int RunGridCommand(const GridOptions& o) {
                fmt::format("{:.4f} ± {:.4f}", errors->trans_mean_m, errors->trans_std_m));
     fmt::print("  {:<28}{:>12}\n", "relations: rotation [deg]",
                fmt::format("{:.3f} ± {:.3f}", errors->rot_mean_deg, errors->rot_std_deg));
+  }
+  if (reference) {
+    fmt::print("  {:<28}{:>12}\n", "ATE vs log poses [m]",
+               fmt::format("{:.4f} rms, {:.4f} max", reference->ate.rmse_m, reference->ate.max_m));
+    fmt::print("  {:<28}{:>12}\n", "RPE translation [m]",
+               fmt::format("{:.4f} ± {:.4f}", reference->rpe.trans_mean_m,
+                           reference->rpe.trans_std_m));
+    fmt::print("  {:<28}{:>12}\n", "RPE rotation [deg]",
+               fmt::format("{:.3f} ± {:.3f}", reference->rpe.rot_mean_deg,
+                           reference->rpe.rot_std_deg));
   }
   fmt::print("wrote {}\n", dir.string());
   return 0;
@@ -85,6 +106,10 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_option("--resolution", p.grid.resolution_m, "map cell size [m]")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
+  cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--reference-from-log", o->reference_from_log,
+                "compare with the poses the log gives (corrected logs): ATE and RPE");
   cmd->callback([o, &exit_code] {
     o->params.matcher.usable_range_m = o->params.insertion.usable_range_m;
     exit_code = RunGridCommand(*o);

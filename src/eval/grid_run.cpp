@@ -27,7 +27,8 @@ GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params
 }
 
 nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& params,
-                           const RelationErrorStats* relations, double peak_rss_mib) {
+                           const RelationErrorStats* relations,
+                           const ReferenceComparison* reference, double peak_rss_mib) {
   nlohmann::json j = {{"scans", r.scans},
                       {"updates", r.updates},
                       {"resamples", r.resamples},
@@ -45,7 +46,23 @@ nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& par
     j["relations_rot_mean_deg"] = relations->rot_mean_deg;
     j["relations_rot_std_deg"] = relations->rot_std_deg;
   }
+  if (reference) {
+    j["ate_rmse_m"] = reference->ate.rmse_m;
+    j["ate_mean_m"] = reference->ate.mean_m;
+    j["ate_max_m"] = reference->ate.max_m;
+    j["rpe_trans_mean_m"] = reference->rpe.trans_mean_m;
+    j["rpe_trans_std_m"] = reference->rpe.trans_std_m;
+    j["rpe_rot_mean_deg"] = reference->rpe.rot_mean_deg;
+    j["rpe_rot_std_deg"] = reference->rpe.rot_std_deg;
+  }
   return j;
+}
+
+Trajectory LoggedTrajectory(const CarmenLog& log) {
+  Trajectory out;
+  out.reserve(log.scans.size());
+  for (const LaserScan& scan : log.scans) out.push_back({scan.t_s, scan.logged_pose});
+  return out;
 }
 
 double PeakRssMib() {

@@ -82,6 +82,20 @@ RelationErrorStats EvaluateRelations(const Trajectory& unsorted_estimate,
   return {static_cast<int>(relations.size()), t.mean, t.std, a.mean, a.std};
 }
 
+std::vector<PoseRelation> RelationsCovered(const Trajectory& trajectory,
+                                           std::span<const PoseRelation> relations,
+                                           double time_tolerance_s) {
+  const Trajectory sorted = SortedByTime(trajectory);
+  std::vector<PoseRelation> out;
+  for (const PoseRelation& r : relations) {
+    if (FindPoseAt(sorted, r.t1_s, time_tolerance_s) >= 0 &&
+        FindPoseAt(sorted, r.t2_s, time_tolerance_s) >= 0) {
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
 AbsoluteTrajectoryErrorStats AbsoluteTrajectoryError(const Trajectory& unsorted_estimate,
                                                      const Trajectory& reference,
                                                      double time_tolerance_s) {
@@ -104,6 +118,27 @@ AbsoluteTrajectoryErrorStats AbsoluteTrajectoryError(const Trajectory& unsorted_
   }
   out.rmse_m = alignment.rmse_m;
   return out;
+}
+
+}  // namespace slamkit
+
+namespace slamkit {
+
+ReferenceComparison CompareWithReference(const Trajectory& estimate, const Trajectory& reference,
+                                         int step) {
+  if (estimate.size() != reference.size() || step < 1) {
+    throw std::invalid_argument(fmt::format(
+        "CompareWithReference: {} estimated poses for {} reference poses (step {})",
+        estimate.size(), reference.size(), step));
+  }
+  // Re-stamp both with the pose index so that pairing cannot depend on the log's clock.
+  Trajectory est = estimate, ref = reference;
+  for (std::size_t i = 0; i < est.size(); ++i) est[i].t_s = ref[i].t_s = double(i);
+  std::vector<PoseRelation> relations;
+  for (std::size_t i = 0; i + step < ref.size(); ++i) {
+    relations.push_back({double(i), double(i + step), ref[i].pose.Between(ref[i + step].pose)});
+  }
+  return {AbsoluteTrajectoryError(est, ref, 0.25), EvaluateRelations(est, relations, 0.25)};
 }
 
 }  // namespace slamkit

@@ -20,7 +20,7 @@ const std::string kShort = std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yam
 TEST(Cli, HelpListsSubcommandsAndEachHasHelp) {
   const auto top = RunCli("--help");
   EXPECT_EQ(top.exit_code, 0);
-  for (const char* sub : {"demo", "mc", "run"}) {
+  for (const char* sub : {"demo", "mc", "run", "grid"}) {
     EXPECT_NE(top.output.find(sub), std::string::npos) << sub;
     const auto help = RunCli(std::string(sub) + " --help");
     EXPECT_EQ(help.exit_code, 0) << sub;
@@ -52,6 +52,18 @@ TEST(Cli, LandmarkCsvWithNanExitsTwoNamingFileAndLine) {
   EXPECT_NE(r.output.find("world.csv"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(":3"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("x_m"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+TEST(Cli, MalformedCarmenLogExitsTwoNamingFileLineAndField) {
+  const fs::path dir = FreshDir("bad_log");
+  std::ofstream(dir / "bad.clf") << "ODOM 0 0 0 0 0 0 1.0 host 0\n"
+                                 << "FLASER 3 1.0 2.0 nan 0 0 0 0 0 0 1.1 host 0\n";
+  const auto r = RunCli("grid --log " + (dir / "bad.clf").string() + " --out " +
+                        (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.clf:2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("r3"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 

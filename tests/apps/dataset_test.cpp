@@ -1,6 +1,7 @@
 // End-to-end runs on the real data sets in ../shared/datasets (read in place, never copied).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +29,31 @@ TEST(VictoriaPark, KnownAssociationMapsEveryFileLandmark) {
   EXPECT_DOUBLE_EQ(m["association_agreement"].get<double>(), 1.0);
   EXPECT_TRUE(fs::exists(dir / "estimate.tum"));
   EXPECT_TRUE(fs::exists(dir / "map.png"));
+}
+
+TEST(Intel, GridSlamOnTheFirstScansWritesTheContractFiles) {
+  const std::string carmen = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/";
+  if (!fs::exists(carmen + "intel.clf")) GTEST_SKIP() << "no intel.clf";
+  const fs::path dir = FreshDir("intel_grid");
+  const auto r = RunCli("grid --log " + carmen + "intel.clf --relations " + carmen +
+                        "intel.relations --max-scans 600 --particles 8 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto m = nlohmann::json::parse(ReadText(dir / "metrics.json"));
+  EXPECT_EQ(m["scans"], 600);
+  EXPECT_GT(m["updates"].get<int>(), 5);
+  EXPECT_GT(m["relations"].get<int>(), 10);
+  // The start of the Intel log is an easy stretch: a working filter stays within decimetres.
+  EXPECT_LT(m["relations_trans_mean_m"].get<double>(), 0.1);
+  EXPECT_LT(m["relations_rot_mean_deg"].get<double>(), 3.0);
+  for (const char* key : {"wall_time_s", "scans_per_s", "peak_rss_mib", "relations_trans_std_m",
+                          "relations_rot_std_deg"}) {
+    EXPECT_TRUE(m.contains(key)) << key;
+  }
+  const std::string trajectory = ReadText(dir / "trajectory.txt");
+  EXPECT_EQ(std::count(trajectory.begin(), trajectory.end(), '\n'), 600);
+  for (const char* file : {"trajectory.tum", "map.pgm", "map.yaml", "map.png"}) {
+    EXPECT_TRUE(fs::exists(dir / file)) << file;
+  }
 }
 
 }  // namespace

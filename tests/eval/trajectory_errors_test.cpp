@@ -41,6 +41,14 @@ TEST(Relations, PerfectEstimateHasZeroErrorWhateverTheFrame) {
   EXPECT_NEAR(s.rot_mean_deg, 0.0, 1e-9);
 }
 
+TEST(Relations, CoveredKeepsOnlyRelationsWithBothPoses) {
+  const std::vector<PoseRelation> relations = {{0.0, 1.0, Pose2()}, {1.0, 7.0, Pose2()},
+                                               {2.0, 0.0, Pose2()}};
+  const auto covered = RelationsCovered(kEstimate, relations);
+  ASSERT_EQ(covered.size(), 2u);
+  EXPECT_EQ(covered[1].t1_s, 2.0);
+}
+
 TEST(Relations, MissingPoseIsAnError) {
   const std::vector<PoseRelation> relations = {{0.0, 1.5, Pose2()}};
   EXPECT_THROW(EvaluateRelations(kEstimate, relations), std::invalid_argument);
@@ -76,6 +84,20 @@ TEST(AbsoluteTrajectoryError, IgnoresRigidMotionAndMeasuresTheRest) {
   EXPECT_NEAR(ate.rmse_m, 0.1 * std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(ate.max_m, 0.1 * std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(ate.mean_m, 0.1 * std::sqrt(2.0), 1e-12);
+}
+
+TEST(CompareWithReference, PairsByIndexWhateverTheTimestamps) {
+  Trajectory reference, estimate;
+  for (int i = 0; i < 5; ++i) {
+    reference.push_back({7.0, Pose2(i, 0, 0)});  // all stamped alike, as in csail-corrected
+    estimate.push_back({7.0, Pose2(i == 4 ? 4.3 : i, 0, 0)});
+  }
+  const ReferenceComparison c = CompareWithReference(estimate, reference);
+  EXPECT_EQ(c.rpe.count, 4);
+  EXPECT_NEAR(c.rpe.trans_mean_m, 0.3 / 4.0, 1e-12);  // only the last step is 0.3 m long
+  EXPECT_EQ(c.ate.count, 5);
+  EXPECT_GT(c.ate.rmse_m, 0.0);
+  EXPECT_THROW(CompareWithReference(estimate, Trajectory(3)), std::invalid_argument);
 }
 
 }  // namespace

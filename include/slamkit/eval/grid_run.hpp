@@ -25,9 +25,13 @@ struct GridRunResult {
 GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
                           const std::function<void(int, int)>& progress = {});
 
-// metrics.json of a grid run (README's output contract); `relations` may be null.
+// metrics.json of a grid run (README's output contract); `relations` and `reference` may be null.
 nlohmann::json GridMetrics(const GridRunResult& result, const RbpfGridSlamParams& params,
-                           const RelationErrorStats* relations, double peak_rss_mib);
+                           const RelationErrorStats* relations,
+                           const ReferenceComparison* reference, double peak_rss_mib);
+
+// The poses a log gives with its scans (corrected in *-corrected logs), one per scan.
+Trajectory LoggedTrajectory(const CarmenLog& log);
 
 // Peak resident memory of this process so far, in MiB.
 double PeakRssMib();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/io/carmen_reader.hpp"
@@ -25,6 +26,11 @@ RelationErrorStats EvaluateRelations(const Trajectory& estimate,
                                      std::span<const PoseRelation> relations,
                                      double time_tolerance_s = 1e-3);
 
+// The relations both of whose times have a pose in `trajectory` (for runs over part of a log).
+std::vector<PoseRelation> RelationsCovered(const Trajectory& trajectory,
+                                           std::span<const PoseRelation> relations,
+                                           double time_tolerance_s = 1e-3);
+
 // Absolute trajectory error: positions of `estimate` and `reference` paired by timestamp (nearest
 // within `time_tolerance_s`, unpaired poses skipped), the best rigid alignment of the estimate
 // onto the reference, then the RMS, mean and max of the remaining position errors.
@@ -38,6 +44,17 @@ struct AbsoluteTrajectoryErrorStats {
 AbsoluteTrajectoryErrorStats AbsoluteTrajectoryError(const Trajectory& estimate,
                                                      const Trajectory& reference,
                                                      double time_tolerance_s = 1e-3);
+
+// An estimate compared pose for pose with a reference of the same scans in the same order (for
+// logs whose timestamps cannot pair them, such as csail-corrected's 6-digit ones): ATE after the
+// best rigid alignment, and the relations metric on the pairs (i, i + step) of the reference.
+struct ReferenceComparison {
+  AbsoluteTrajectoryErrorStats ate;
+  RelationErrorStats rpe;
+};
+
+ReferenceComparison CompareWithReference(const Trajectory& estimate, const Trajectory& reference,
+                                         int step = 1);
 
 // Index of the pose nearest to `t_s` within the tolerance, or -1 (binary search).
 int FindPoseAt(const Trajectory& trajectory, double t_s, double time_tolerance_s);
