@@ -14,9 +14,6 @@ constexpr int kTileMask = OccupancyGrid::kTileSize - 1;
 // Tile coordinate of a cell coordinate (floor division: >> on a negative int is arithmetic).
 int TileOf(int cell) { return cell >> OccupancyGrid::kTileBits; }
 int OffsetInTile(int cell) { return cell & kTileMask; }
-int IndexInTile(const CellIndex& c) {
-  return OffsetInTile(c.y) * OccupancyGrid::kTileSize + OffsetInTile(c.x);
-}
 
 // Row-major index of tile (tx, ty) in a table over [min, min + extent), or -1 outside it.
 std::ptrdiff_t TableIndex(const CellIndex& min, const CellIndex& extent, int tx, int ty) {
@@ -63,25 +60,12 @@ template <typename TilePtr>
 
 }  // namespace
 
-OccupancyGrid::OccupancyGrid(const OccupancyGridParams& params) : params_(params) {}
-
-CellIndex OccupancyGrid::WorldToCell(const Eigen::Vector2d& p) const {
-  return {static_cast<int>(std::floor(p.x() / params_.resolution_m)),
-          static_cast<int>(std::floor(p.y() / params_.resolution_m))};
-}
-
-Eigen::Vector2d OccupancyGrid::CellCenter(const CellIndex& c) const {
-  return {(c.x + 0.5) * params_.resolution_m, (c.y + 0.5) * params_.resolution_m};
-}
+OccupancyGrid::OccupancyGrid(const OccupancyGridParams& params)
+    : params_(params), inverse_resolution_(1.0 / params.resolution_m) {}
 
 std::shared_ptr<OccupancyGrid::Tile>* OccupancyGrid::FindTileSlot(int tx, int ty) {
   const std::ptrdiff_t i = TableIndex(tile_min_, tile_extent_, tx, ty);
   return i < 0 ? nullptr : &tiles_[static_cast<std::size_t>(i)];
-}
-
-const OccupancyGrid::Tile* OccupancyGrid::FindTile(int tx, int ty) const {
-  const std::ptrdiff_t i = TableIndex(tile_min_, tile_extent_, tx, ty);
-  return i < 0 ? nullptr : tiles_[static_cast<std::size_t>(i)].get();
 }
 
 OccupancyGrid::Tile& OccupancyGrid::MutableTile(int tx, int ty) {
@@ -97,11 +81,6 @@ OccupancyGrid::Tile& OccupancyGrid::MutableTile(int tx, int ty) {
     *slot = std::make_shared<Tile>(**slot);  // copy-on-write: unshare this tile only
   }
   return **slot;
-}
-
-float OccupancyGrid::LogOdds(const CellIndex& c) const {
-  const Tile* tile = FindTile(TileOf(c.x), TileOf(c.y));
-  return tile == nullptr ? 0.0f : (*tile)[IndexInTile(c)];
 }
 
 double OccupancyGrid::Probability(const CellIndex& c) const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -40,10 +41,27 @@ class OccupancyGrid {
 
   const OccupancyGridParams& params() const { return params_; }
   double resolution() const { return params_.resolution_m; }
-  CellIndex WorldToCell(const Eigen::Vector2d& p) const;
-  Eigen::Vector2d CellCenter(const CellIndex& c) const;
+  // Inline: scan matching calls these hundreds of thousands of times per scan.
+  CellIndex WorldToCell(const Eigen::Vector2d& p) const {
+    return {static_cast<int>(std::floor(p.x() * inverse_resolution_)),
+            static_cast<int>(std::floor(p.y() * inverse_resolution_))};
+  }
+  Eigen::Vector2d CellCenter(const CellIndex& c) const {
+    return {(c.x + 0.5) * params_.resolution_m, (c.y + 0.5) * params_.resolution_m};
+  }
 
-  float LogOdds(const CellIndex& c) const;  // 0 outside the written area
+  // 0 outside the written area.
+  float LogOdds(const CellIndex& c) const {
+    const unsigned ix = static_cast<unsigned>((c.x >> kTileBits) - tile_min_.x);
+    const unsigned iy = static_cast<unsigned>((c.y >> kTileBits) - tile_min_.y);
+    if (ix >= static_cast<unsigned>(tile_extent_.x) ||
+        iy >= static_cast<unsigned>(tile_extent_.y)) {
+      return 0.0f;
+    }
+    const Tile* tile = tiles_[std::size_t(iy) * std::size_t(tile_extent_.x) + ix].get();
+    constexpr int kMask = kTileSize - 1;
+    return tile == nullptr ? 0.0f : (*tile)[(c.y & kMask) * kTileSize + (c.x & kMask)];
+  }
   double Probability(const CellIndex& c) const;
   bool IsKnown(const CellIndex& c) const { return LogOdds(c) != 0.0f; }
   // Adds `delta` to the cell's log-odds, clamped to [log_odds_min, log_odds_max].
@@ -58,10 +76,10 @@ class OccupancyGrid {
  private:
   using Tile = std::array<float, kTileSize * kTileSize>;
   std::shared_ptr<Tile>* FindTileSlot(int tx, int ty);
-  const Tile* FindTile(int tx, int ty) const;
   Tile& MutableTile(int tx, int ty);
 
   OccupancyGridParams params_;
+  double inverse_resolution_;
   // Tiles in a row-major table over the tile range [tile_min_, tile_min_ + tile_extent_).
   std::vector<std::shared_ptr<Tile>> tiles_;
   CellIndex tile_min_{0, 0};
