@@ -114,6 +114,7 @@ MatchResult MatchScan(const OccupancyGrid& grid, const ScanPoints& points, const
   ScanMatcherParams coarse = params;
   coarse.search_cells = params.coarse_search_cells;
   coarse.score_sigma_m = params.coarse_score_sigma_m;
+  coarse.refinements = params.coarse_refinements;
   const Pose2 start =
       HillClimb(grid, EveryNth(points, params.coarse_beam_stride), initial, coarse).pose;
   MatchResult best = HillClimb(grid, points, start, params);

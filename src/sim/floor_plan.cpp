@@ -116,15 +116,15 @@ class WallGrid {
 };
 
 WallGrid::WallGrid(const std::vector<WallSegment>& walls) {
-  Eigen::Vector2d lo = Eigen::Vector2d::Zero();
-  Eigen::Vector2d hi = Eigen::Vector2d::Zero();
+  Eigen::Vector2d lo = walls.empty() ? Eigen::Vector2d::Zero() : walls[0].first;
+  Eigen::Vector2d hi = lo;
   for (std::size_t i = 0; i < walls.size(); ++i) {
     const auto& [a, b] = walls[i];
     if (!a.allFinite() || !b.allFinite()) {
       throw std::invalid_argument("FloorPlan: wall " + std::to_string(i) + " is not finite");
     }
-    lo = i == 0 ? a.cwiseMin(b) : lo.cwiseMin(a).cwiseMin(b);
-    hi = i == 0 ? a.cwiseMax(b) : hi.cwiseMax(a).cwiseMax(b);
+    lo = lo.cwiseMin(a).cwiseMin(b);
+    hi = hi.cwiseMax(a).cwiseMax(b);
   }
   const Eigen::Vector2d extent = hi - lo;
   cell_m_ = std::max({kCellSize_m, std::sqrt(extent.x() * extent.y() / kMaxCells),

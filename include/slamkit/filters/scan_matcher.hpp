@@ -25,6 +25,7 @@ struct ScanMatcherParams {
   int coarse_search_cells = 3;
   double coarse_score_sigma_m = 0.15;
   int coarse_beam_stride = 3;
+  int coarse_refinements = 5;
 };
 
 // The beams of one scan that can be matched, as points in the robot frame (the laser offset
