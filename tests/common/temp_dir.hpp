@@ -21,6 +21,13 @@ class TempDirTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
+  // Writes `text` to `dir_ / name` (bytes as given) and returns the path.
+  std::filesystem::path WriteFile(const std::string& name, const std::string& text) const {
+    const std::filesystem::path path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  }
+
   std::filesystem::path dir_;
 };
 

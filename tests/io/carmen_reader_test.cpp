@@ -13,6 +13,7 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 
+#include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace slamkit {
@@ -46,18 +47,10 @@ void ExpectSamePose(const Pose2& a, const Pose2& b) { EXPECT_EQ(a.vector(), b.ve
 class CarmenReader : public testing::TempDirTest {
  protected:
   fs::path Write(const std::string& text, const std::string& name = "log.clf") const {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
+    return WriteFile(name, text);
   }
   std::string ErrorOf(const fs::path& path, const CarmenReadOptions& options = {}) const {
-    try {
-      ReadCarmenLog(path, options);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError for " << path;
-    return "";
+    return testing::InputErrorOf([&] { ReadCarmenLog(path, options); });
   }
   std::string ErrorOfLog(const std::string& text) const { return ErrorOf(Write(text)); }
 };

@@ -8,6 +8,7 @@
 
 #include "slamkit/io/error.hpp"
 
+#include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace slamkit {
@@ -20,20 +21,9 @@ constexpr const char* kOdometry01 = "ODOMETRY 0 1 0.5 0.01 0.02 0.0001 0 0 4e-06
 
 class IsamReader : public testing::TempDirTest {
  protected:
-
-  fs::path Write(const std::string& text) const {
-    const fs::path path = dir_ / "log.txt";
-    std::ofstream(path) << text;
-    return path;
-  }
+  fs::path Write(const std::string& text) const { return WriteFile("log.txt", text); }
   std::string ErrorOf(const std::string& text) const {
-    try {
-      ReadIsamLog(Write(text));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return "";
+    return testing::InputErrorOf([&] { ReadIsamLog(Write(text)); });
   }
 };
 

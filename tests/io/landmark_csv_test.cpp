@@ -8,6 +8,7 @@
 
 #include "slamkit/io/error.hpp"
 
+#include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace slamkit {
@@ -18,21 +19,10 @@ using testing::Contains;
 
 class LandmarkCsv : public testing::TempDirTest {
  protected:
-
-  fs::path Write(const std::string& text) const {
-    const fs::path path = dir_ / "landmarks.csv";
-    std::ofstream(path) << text;
-    return path;
-  }
+  fs::path Write(const std::string& text) const { return WriteFile("landmarks.csv", text); }
   // The message of the InputError that reading `text` raises.
   std::string ErrorOf(const std::string& text) const {
-    try {
-      ReadLandmarkCsv(Write(text));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return "";
+    return testing::InputErrorOf([&] { ReadLandmarkCsv(Write(text)); });
   }
 };
 

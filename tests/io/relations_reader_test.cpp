@@ -9,6 +9,7 @@
 #include "slamkit/io/carmen_reader.hpp"
 #include "slamkit/io/error.hpp"
 
+#include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace slamkit {
@@ -21,19 +22,9 @@ const fs::path kCarmenDir = fs::path(SLAMKIT_DATASETS_DIR) / "carmen";
 
 class RelationsReader : public testing::TempDirTest {
  protected:
-  fs::path Write(const std::string& text) const {
-    const fs::path path = dir_ / "log.relations";
-    std::ofstream(path) << text;
-    return path;
-  }
+  fs::path Write(const std::string& text) const { return WriteFile("log.relations", text); }
   std::string ErrorOf(const std::string& text) const {
-    try {
-      ReadRelations(Write(text));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return "";
+    return testing::InputErrorOf([&] { ReadRelations(Write(text)); });
   }
 };
 

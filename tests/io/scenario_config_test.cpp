@@ -11,6 +11,7 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 
+#include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
 
 namespace slamkit {
@@ -26,18 +27,11 @@ class ScenarioConfig : public testing::TempDirTest {
  protected:
 
   fs::path Write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name) << text;
-    return dir_ / name;
+    return WriteFile(name, text);
   }
   // The message of the InputError that loading `text` as bad.yaml raises.
   std::string ErrorOf(const std::string& text) const {
-    try {
-      LoadScenario(Write("bad.yaml", text));
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "no InputError for:\n" << text;
-    return "";
+    return testing::InputErrorOf([&] { LoadScenario(Write("bad.yaml", text)); });
   }
 };
 
