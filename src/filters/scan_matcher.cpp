@@ -27,6 +27,11 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Eigen::Vector2d& en
   const double r = grid.resolution();
   const CellIndex c = grid.WorldToCell(end);
   const CellIndex f = grid.WorldToCell(end - r * direction);
+  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells
+  // are the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
+  if (grid.LogOdds(c) > 0.0f && grid.LogOdds(f) < 0.0f) {
+    return (grid.CellCenter(c) - end).squaredNorm();
+  }
   double best = std::numeric_limits<double>::infinity();
   for (int dx = -window; dx <= window; ++dx) {
     for (int dy = -window; dy <= window; ++dy) {
