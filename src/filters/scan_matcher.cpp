@@ -29,15 +29,15 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Eigen::Vector2d& en
   const CellIndex f = grid.WorldToCell(end - r * direction);
   // A point is nearer to the centre of its own cell than to any other cell's centre (the cells
   // are the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
-  if (grid.LogOdds(c) > 0.0f && grid.LogOdds(f) < 0.0f) {
+  if (grid.LogOddsSteps(c) > 0 && grid.LogOddsSteps(f) < 0) {
     return (grid.CellCenter(c) - end).squaredNorm();
   }
   double best = std::numeric_limits<double>::infinity();
   for (int dx = -window; dx <= window; ++dx) {
     for (int dy = -window; dy <= window; ++dy) {
       const CellIndex hit{c.x + dx, c.y + dy};
-      if (grid.LogOdds(hit) <= 0.0f) continue;
-      if (grid.LogOdds({f.x + dx, f.y + dy}) >= 0.0f) continue;
+      if (grid.LogOddsSteps(hit) <= 0) continue;
+      if (grid.LogOddsSteps({f.x + dx, f.y + dy}) >= 0) continue;
       best = std::min(best, (grid.CellCenter(hit) - end).squaredNorm());
     }
   }

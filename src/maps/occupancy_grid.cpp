@@ -61,7 +61,10 @@ template <typename TilePtr>
 }  // namespace
 
 OccupancyGrid::OccupancyGrid(const OccupancyGridParams& params)
-    : params_(params), inverse_resolution_(1.0 / params.resolution_m) {}
+    : params_(params),
+      inverse_resolution_(1.0 / params.resolution_m),
+      min_steps_(std::lround(std::max(params.log_odds_min, -7.9f) / kLogOddsStep)),
+      max_steps_(std::lround(std::min(params.log_odds_max, 7.9f) / kLogOddsStep)) {}
 
 std::shared_ptr<OccupancyGrid::Tile>* OccupancyGrid::FindTileSlot(int tx, int ty) {
   const std::ptrdiff_t i = TableIndex(tile_min_, tile_extent_, tx, ty);
@@ -76,7 +79,7 @@ OccupancyGrid::Tile& OccupancyGrid::MutableTile(int tx, int ty) {
   }
   if (*slot == nullptr) [[unlikely]] {
     *slot = std::make_shared<Tile>();
-    (*slot)->fill(0.0f);
+    (*slot)->fill(0);
   } else if (slot->use_count() > 1) [[unlikely]] {
     *slot = std::make_shared<Tile>(**slot);  // copy-on-write: unshare this tile only
   }
@@ -87,15 +90,16 @@ double OccupancyGrid::Probability(const CellIndex& c) const {
   return 1.0 - 1.0 / (1.0 + std::exp(static_cast<double>(LogOdds(c))));
 }
 
-void OccupancyGrid::Update(const CellIndex& c, float delta) {
+void OccupancyGrid::UpdateSteps(const CellIndex& c, long delta_steps) {
   // Hot path (once per cell per beam). The cell is only ever read and written one int at a time:
   // callers build it with two 4-byte stores, and an 8-byte load of it (which GCC emits for
   // whole-struct copies and vectorised min/max) stalls on store forwarding, which made an update
   // about 2.5x slower (15 ns instead of 6 ns here).
   const int x = c.x;
   const int y = c.y;
-  float& l = MutableTile(TileOf(x), TileOf(y))[OffsetInTile(y) * kTileSize + OffsetInTile(x)];
-  l = std::clamp(l + delta, params_.log_odds_min, params_.log_odds_max);
+  std::int16_t& l =
+      MutableTile(TileOf(x), TileOf(y))[OffsetInTile(y) * kTileSize + OffsetInTile(x)];
+  l = static_cast<std::int16_t>(std::clamp(l + delta_steps, min_steps_, max_steps_));
   if (min_cell_.x > max_cell_.x) {  // the first write
     min_cell_.x = max_cell_.x = x;
     min_cell_.y = max_cell_.y = y;

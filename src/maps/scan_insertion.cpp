@@ -66,8 +66,8 @@ std::vector<CellIndex> RayCells(const CellIndex& from, const CellIndex& to) {
 void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& scan,
                 const ScanInsertionParams& params) {
   const CellIndex origin = grid.WorldToCell(laser_pose.translation());
-  const float miss = grid.params().log_odds_miss;
-  const float hit = grid.params().log_odds_hit;
+  const long miss = OccupancyGrid::ToSteps(grid.params().log_odds_miss);
+  const long hit = OccupancyGrid::ToSteps(grid.params().log_odds_hit);
   const int n = static_cast<int>(scan.ranges_m.size());
   for (int i = 0; i < n; ++i) {
     const double range = scan.ranges_m[i];
@@ -78,8 +78,8 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
         laser_pose.translation() + length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     const CellIndex end_cell = grid.WorldToCell(end);
     ForEachRayCell(origin, end_cell, /*include_end=*/false,
-                   [&grid, miss](const CellIndex& c) { grid.Update(c, miss); });
-    if (scan.IsReturn(i) && range <= params.usable_range_m) grid.Update(end_cell, hit);
+                   [&grid, miss](const CellIndex& c) { grid.UpdateSteps(c, miss); });
+    if (scan.IsReturn(i) && range <= params.usable_range_m) grid.UpdateSteps(end_cell, hit);
   }
 }
 

@@ -24,7 +24,7 @@ struct OccupancyGridParams {
   double resolution_m = 0.05;
   float log_odds_hit = 0.85f;    // ≈ ln(0.7 / 0.3)
   float log_odds_miss = -0.4f;   // ≈ ln(0.4 / 0.6)
-  float log_odds_min = -4.0f;    // clamping keeps cells able to change their mind
+  float log_odds_min = -4.0f;    // clamping keeps cells able to change their mind (|·| ≤ 7.9)
   float log_odds_max = 4.0f;
 };
 
@@ -51,21 +51,27 @@ class OccupancyGrid {
   }
 
   // 0 outside the written area.
-  float LogOdds(const CellIndex& c) const {
+  // Stored to a resolution of kLogOddsStep.
+  float LogOdds(const CellIndex& c) const { return kLogOddsStep * LogOddsSteps(c); }
+  // The stored value in kLogOddsStep units: its sign is all that occupied/free tests need.
+  std::int16_t LogOddsSteps(const CellIndex& c) const {
     const unsigned ix = static_cast<unsigned>((c.x >> kTileBits) - tile_min_.x);
     const unsigned iy = static_cast<unsigned>((c.y >> kTileBits) - tile_min_.y);
     if (ix >= static_cast<unsigned>(tile_extent_.x) ||
         iy >= static_cast<unsigned>(tile_extent_.y)) {
-      return 0.0f;
+      return 0;
     }
     const Tile* tile = tiles_[std::size_t(iy) * std::size_t(tile_extent_.x) + ix].get();
     constexpr int kMask = kTileSize - 1;
-    return tile == nullptr ? 0.0f : (*tile)[(c.y & kMask) * kTileSize + (c.x & kMask)];
+    return tile == nullptr ? 0 : (*tile)[(c.y & kMask) * kTileSize + (c.x & kMask)];
   }
   double Probability(const CellIndex& c) const;
   bool IsKnown(const CellIndex& c) const { return LogOdds(c) != 0.0f; }
   // Adds `delta` to the cell's log-odds, clamped to [log_odds_min, log_odds_max].
-  void Update(const CellIndex& c, float delta);
+  void Update(const CellIndex& c, float delta) { UpdateSteps(c, ToSteps(delta)); }
+  // The same with the change already in kLogOddsStep units (ToSteps), for loops over many cells.
+  void UpdateSteps(const CellIndex& c, long delta_steps);
+  static long ToSteps(float delta) { return std::lround(delta / kLogOddsStep); }
 
   // Inclusive bounds of the cells written so far (min > max when nothing was written).
   CellIndex min_cell() const { return min_cell_; }
@@ -74,12 +80,17 @@ class OccupancyGrid {
   std::size_t SharedTileCount() const;  // tiles also referenced by another grid
 
  private:
-  using Tile = std::array<float, kTileSize * kTileSize>;
+  // Log-odds are stored as 16-bit fixed point (kLogOddsStep per unit, ±8 representable): half
+  // the memory of floats, which matters with one map per particle and in the matcher's lookups.
+  using Tile = std::array<std::int16_t, kTileSize * kTileSize>;
+  static constexpr float kLogOddsStep = 1.0f / 4096.0f;
   std::shared_ptr<Tile>* FindTileSlot(int tx, int ty);
   Tile& MutableTile(int tx, int ty);
 
   OccupancyGridParams params_;
   double inverse_resolution_;
+  long min_steps_;  // the clamping bounds in kLogOddsStep units
+  long max_steps_;
   // Tiles in a row-major table over the tile range [tile_min_, tile_min_ + tile_extent_).
   std::vector<std::shared_ptr<Tile>> tiles_;
   CellIndex tile_min_{0, 0};
