@@ -105,6 +105,14 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--resolution", p.grid.resolution_m, "map cell size [m]")
       ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--srr", p.motion.srr, "odometry noise: m per m driven")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--srt", p.motion.srt, "odometry noise: m per rad turned")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--str", p.motion.str, "odometry noise: rad per m driven")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--stt", p.motion.stt, "odometry noise: rad per rad turned")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
   cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
       ->check(CLI::NonNegativeNumber);
