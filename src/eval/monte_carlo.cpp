@@ -5,6 +5,7 @@
 #include <cmath>
 #include <mutex>
 #include <thread>
+#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -20,13 +21,14 @@ using Clock = std::chrono::steady_clock;
 // Landmark error after the best rigid alignment of the estimated map onto the true one, pairing
 // each estimated landmark with the true landmark of the sighting that created it.
 double AlignedMapRmse(const LandmarkMap& map, const LandmarkWorld& world) {
+  std::unordered_map<LandmarkId, Eigen::Vector2d> truth;
+  for (const Landmark& l : world.landmarks) truth.emplace(l.id, l.position_m);
   std::vector<Eigen::Vector2d> from, to;
   for (const MappedLandmark& m : map.landmarks) {
-    const auto it = std::find_if(world.landmarks.begin(), world.landmarks.end(),
-                                 [&](const Landmark& l) { return l.id == m.source_id; });
-    if (it == world.landmarks.end()) continue;
+    const auto it = truth.find(m.source_id);
+    if (it == truth.end()) continue;
     from.push_back(m.position_m);
-    to.push_back(it->position_m);
+    to.push_back(it->second);
   }
   return AlignPoints(from, to).rmse_m;
 }
