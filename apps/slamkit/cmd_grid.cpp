@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "grid_options.hpp"
 #include "progress.hpp"
 #include "slamkit/eval/grid_run.hpp"
 #include "slamkit/io/grid_writers.hpp"
@@ -86,7 +87,6 @@ int RunGridCommand(const GridOptions& o) {
 
 void RegisterGrid(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<GridOptions>();
-  RbpfGridSlamParams& p = o->params;
   CLI::App* cmd = app.add_subcommand("grid", "occupancy-grid RBPF SLAM on a CARMEN laser log");
   cmd->add_option("--log", o->log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
       ->required()
@@ -94,32 +94,14 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", o->out, "output directory")->required();
   cmd->add_option("--relations", o->relations, "relations file (Kümmerle et al. 2009)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--particles", p.particles, "particles")->capture_default_str()
-      ->check(CLI::Range(1, 10000));
-  cmd->add_option("--seed", p.seed, "random seed")->capture_default_str();
-  cmd->add_option("--linear-update", p.linear_update_m, "update after driving this far [m]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--angular-update", p.angular_update_rad, "update after turning this far [rad]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--usable-range", p.insertion.usable_range_m, "laser range used [m]")
-      ->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--resolution", p.grid.resolution_m, "map cell size [m]")
-      ->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--srr", p.motion.srr, "odometry noise: m per m driven")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--srt", p.motion.srt, "odometry noise: m per rad turned")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--str", p.motion.str, "odometry noise: rad per m driven")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--stt", p.motion.stt, "odometry noise: rad per rad turned")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  AddGridFilterOptions(cmd, o->params);
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
   cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--reference-from-log", o->reference_from_log,
                 "compare with the poses the log gives (corrected logs): ATE and RPE");
   cmd->callback([o, &exit_code] {
-    o->params.matcher.usable_range_m = o->params.insertion.usable_range_m;
+    FinishGridFilterOptions(o->params);
     exit_code = RunGridCommand(*o);
   });
 }

@@ -10,5 +10,6 @@ void RegisterMonteCarlo(CLI::App& app, int& exit_code);
 void RegisterDemo(CLI::App& app, int& exit_code);
 void RegisterRun(CLI::App& app, int& exit_code);
 void RegisterGrid(CLI::App& app, int& exit_code);
+void RegisterGridSim(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   slamkit::app::RegisterMonteCarlo(app, exit_code);
   slamkit::app::RegisterRun(app, exit_code);
   slamkit::app::RegisterGrid(app, exit_code);
+  slamkit::app::RegisterGridSim(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -40,7 +40,7 @@ void RbpfGridSlam::Initialise(const LaserScan& scan) {
 
 bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
   const int scan_index = static_cast<int>(scans_.size());
-  scans_.push_back({scan.t_s, scan.odometry});
+  scans_.push_back({scan.t_s, scan.odometry, Pose2()});
   if (scan_index == 0) {
     Initialise(scan);
     return true;
@@ -48,6 +48,7 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
   const Pose2 delta = last_update_odometry_.Between(scan.odometry);
   if (delta.translation().norm() < params_.linear_update_m &&
       std::abs(delta.theta()) < params_.angular_update_rad) {
+    TrackBetweenUpdates(scan, scan_index);
     return false;
   }
   MoveAndWeigh(scan, delta);
@@ -77,6 +78,28 @@ void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
   });
 }
 
+// The scans between updates leave the particles where they are; each one's pose relative to
+// the last update is tracked against the best particle's map, which is much closer to the truth
+// than odometry over up to a metre (the rotational error on Intel's relations is dominated by
+// these scans otherwise).
+void RbpfGridSlam::TrackBetweenUpdates(const LaserScan& scan, int scan_index) {
+  const ScanRecord& previous = scans_[scan_index - 1];
+  Pose2 since = previous.since_update.Compose(previous.odometry.Between(scan.odometry));
+  if (params_.track_between_updates) {
+    const Particle& best = particles_[BestParticle()];
+    const ScanPoints points = PrepareScan(scan, params_.tracking);
+    const Pose2 guess = best.pose.Compose(since);
+    const MatchResult match = MatchScan(best.map, points, guess, params_.tracking);
+    const Pose2 correction = guess.Between(match.pose);
+    if (match.accepted &&
+        correction.translation().norm() <= params_.tracking_max_correction_m &&
+        std::abs(correction.theta()) <= params_.tracking_max_correction_rad) {
+      since = best.pose.Between(match.pose);
+    }
+  }
+  scans_[scan_index].since_update = since;
+}
+
 void RbpfGridSlam::ResampleIfNeeded() {
   std::vector<double> log_weights;
   for (const Particle& p : particles_) log_weights.push_back(p.log_weight);
@@ -98,7 +121,8 @@ void RbpfGridSlam::ResampleIfNeeded() {
 }
 
 // Copies of one particle hold the same pose and map: the scan goes into the first copy once and
-// the others share its tiles.
+// the others share its tiles. The other copies let go of their maps first, so that tiles shared
+// only among copies are written in place instead of being copied and then dropped.
 void RbpfGridSlam::InsertIntoMaps(const LaserScan& scan, int scan_index) {
   const int n = static_cast<int>(particles_.size());
   std::vector<int> first_of_source(n, -1), owners;
@@ -107,6 +131,8 @@ void RbpfGridSlam::InsertIntoMaps(const LaserScan& scan, int scan_index) {
     if (first < 0) {
       first = i;
       owners.push_back(i);
+    } else {
+      particles_[i].map = OccupancyGrid(params_.grid);
     }
   }
   tbb::parallel_for(0, static_cast<int>(owners.size()), [&](int k) {
@@ -136,7 +162,7 @@ const OccupancyGrid& RbpfGridSlam::BestMap() const { return particles_[BestParti
 Pose2 RbpfGridSlam::CurrentPose() const {
   if (particles_.empty()) return Pose2();
   const Particle& p = particles_[BestParticle()];
-  return p.pose.Compose(last_update_odometry_.Between(scans_.back().odometry));
+  return p.pose.Compose(scans_.back().since_update);
 }
 
 Trajectory RbpfGridSlam::BestTrajectory() const {
@@ -150,9 +176,7 @@ Trajectory RbpfGridSlam::BestTrajectory() const {
   std::size_t k = 0;
   for (std::size_t i = 0; i < scans_.size(); ++i) {
     while (k + 1 < nodes.size() && nodes[k + 1]->scan_index <= int(i)) ++k;
-    const PathNode& node = *nodes[k];
-    const Pose2 since = scans_[node.scan_index].odometry.Between(scans_[i].odometry);
-    out[i] = {scans_[i].t_s, node.pose.Compose(since)};
+    out[i] = {scans_[i].t_s, nodes[k]->pose.Compose(scans_[i].since_update)};
   }
   return out;
 }

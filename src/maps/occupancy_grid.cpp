@@ -63,8 +63,8 @@ template <typename TilePtr>
 OccupancyGrid::OccupancyGrid(const OccupancyGridParams& params)
     : params_(params),
       inverse_resolution_(1.0 / params.resolution_m),
-      min_steps_(std::lround(std::max(params.log_odds_min, -7.9f) / kLogOddsStep)),
-      max_steps_(std::lround(std::min(params.log_odds_max, 7.9f) / kLogOddsStep)) {}
+      min_steps_(std::max(std::lround(params.log_odds_min / kLogOddsStep), -kMaxSteps)),
+      max_steps_(std::min(std::lround(params.log_odds_max / kLogOddsStep), kMaxSteps)) {}
 
 std::shared_ptr<OccupancyGrid::Tile>* OccupancyGrid::FindTileSlot(int tx, int ty) {
   const std::ptrdiff_t i = TableIndex(tile_min_, tile_extent_, tx, ty);
@@ -97,9 +97,9 @@ void OccupancyGrid::UpdateSteps(const CellIndex& c, long delta_steps) {
   // about 2.5x slower (15 ns instead of 6 ns here).
   const int x = c.x;
   const int y = c.y;
-  std::int16_t& l =
+  CellValue& l =
       MutableTile(TileOf(x), TileOf(y))[OffsetInTile(y) * kTileSize + OffsetInTile(x)];
-  l = static_cast<std::int16_t>(std::clamp(l + delta_steps, min_steps_, max_steps_));
+  l = static_cast<CellValue>(std::clamp(l + delta_steps, min_steps_, max_steps_));
   if (min_cell_.x > max_cell_.x) {  // the first write
     min_cell_.x = max_cell_.x = x;
     min_cell_.y = max_cell_.y = y;

@@ -2,6 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -20,7 +23,7 @@ const std::string kShort = std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yam
 TEST(Cli, HelpListsSubcommandsAndEachHasHelp) {
   const auto top = RunCli("--help");
   EXPECT_EQ(top.exit_code, 0);
-  for (const char* sub : {"demo", "mc", "run", "grid"}) {
+  for (const char* sub : {"demo", "mc", "run", "grid", "gridsim"}) {
     EXPECT_NE(top.output.find(sub), std::string::npos) << sub;
     const auto help = RunCli(std::string(sub) + " --help");
     EXPECT_EQ(help.exit_code, 0) << sub;
@@ -65,6 +68,35 @@ TEST(Cli, MalformedCarmenLogExitsTwoNamingFileLineAndField) {
   EXPECT_NE(r.output.find("bad.clf:2"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("r3"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// gridsim's bad inputs fail before the simulation, so no output directory is made.
+TEST(Cli, GridSimBadInputsExitTwoNamingTheProblem) {
+  const fs::path dir = FreshDir("gridsim_bad");
+  std::ofstream(dir / "map.pgm", std::ios::binary) << "P5\n4 4\n255\n" << std::string(10, '\0');
+  std::ofstream(dir / "map.yaml") << "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n";
+  std::ofstream(dir / "nores.yaml") << "image: map.pgm\norigin: [0, 0, 0]\n";
+  std::ofstream(dir / "route.txt") << "1 1\n2 oops\n";
+  const std::string out = " --out " + (dir / "out").string();
+  const std::pair<std::string, std::vector<std::string>> cases[] = {
+      {"--plan " + (dir / "map.yaml").string(), {"--waypoints"}},
+      {"--plan " + (dir / "map.yaml").string() + " --waypoints " + (dir / "route.txt").string(),
+       {"map.pgm", "truncated pixel data"}},
+      {"--plan " + (dir / "nores.yaml").string() + " --waypoints " + (dir / "route.txt").string(),
+       {"nores.yaml", "resolution"}},
+      {"--waypoints " + (dir / "route.txt").string(), {"route.txt:2", "'y'"}},
+      {"--plan " + (dir / "none.yaml").string() + " --waypoints " + (dir / "route.txt").string(),
+       {"none.yaml"}},
+      {"--speed 5", {"--speed"}},
+      {"--particles 0", {"--particles"}}};
+  for (const auto& [args, parts] : cases) {
+    const auto r = RunCli("gridsim " + args + out);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    for (const std::string& part : parts) {
+      EXPECT_NE(r.output.find(part), std::string::npos) << args << "\n" << r.output;
+    }
+    EXPECT_FALSE(fs::exists(dir / "out")) << args;
+  }
 }
 
 // Same seed, one or two threads: every output file is identical, and metrics.json differs only

@@ -3,6 +3,7 @@
 #include <tbb/global_control.h>
 
 #include "common/synthetic_room.hpp"
+#include "slamkit/core/angle.hpp"
 #include "slamkit/filters/rbpf_grid_slam.hpp"
 
 namespace slamkit {
@@ -13,7 +14,7 @@ using testing::RoomScan;
 // A robot driving a loop in the room with biased odometry: the filter's path must stay close to
 // the truth while raw odometry drifts, and the same seed must give the same path for any
 // thread count.
-std::vector<LaserScan> LoopLog(std::vector<Pose2>* truth) {
+std::vector<LaserScan> LoopLog(std::vector<Pose2>* truth, double heading_drift_rad = 0.0) {
   std::vector<LaserScan> log;
   Pose2 odo;
   Pose2 pose(-5, -3, 0);
@@ -22,19 +23,22 @@ std::vector<LaserScan> LoopLog(std::vector<Pose2>* truth) {
     const double turn = (k % 34 >= 24) ? M_PI / 20 : 0.0;  // straight 24 steps, turn 90° in 10
     const Pose2 step(turn > 0 ? 0.05 : 0.25, 0.0, turn);
     pose = pose.Compose(step);
-    odo = odo.Compose(Pose2(step.x() * 1.03, 0.0, step.theta() * 1.02));  // biased odometry
+    // Biased odometry.
+    odo = odo.Compose(Pose2(step.x() * 1.03, 0.0, step.theta() * 1.02 + heading_drift_rad));
     truth->push_back(start.Between(pose));
     log.push_back(RoomScan(pose, 0.1 * k, odo));
   }
   return log;
 }
 
-Trajectory RunFilter(const std::vector<LaserScan>& log, int threads) {
+Trajectory RunFilter(const std::vector<LaserScan>& log, int threads,
+                     RbpfGridSlamParams params = {}) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  RbpfGridSlamParams params;
   params.particles = 10;
-  params.linear_update_m = 0.5;
-  params.angular_update_rad = 0.3;
+  if (params.linear_update_m == RbpfGridSlamParams{}.linear_update_m) {
+    params.linear_update_m = 0.5;
+    params.angular_update_rad = 0.3;
+  }
   RbpfGridSlam slam(params);
   for (const LaserScan& s : log) slam.ProcessScan(s);
   return slam.BestTrajectory();
@@ -59,6 +63,32 @@ TEST(RbpfGridSlam, TracksALoopBetterThanOdometryAndIsDeterministic) {
   for (std::size_t k = 0; k < log.size(); ++k) {
     ASSERT_EQ(one[k].pose.vector(), two[k].pose.vector()) << k;
   }
+}
+
+// Mean heading error of the step from each scan to the next (relative pose error on
+// consecutive scans), in radians.
+double MeanStepHeadingError(const Trajectory& estimate, const std::vector<Pose2>& truth) {
+  double sum = 0.0;
+  for (std::size_t k = 1; k < truth.size(); ++k) {
+    const double estimated = estimate[k - 1].pose.Between(estimate[k].pose).theta();
+    sum += std::abs(WrapAngle(estimated - truth[k - 1].Between(truth[k]).theta()));
+  }
+  return sum / double(truth.size() - 1);
+}
+
+// Between updates (every 1 m here, so several scans apart) the scans are tracked against the
+// map; with odometry that drifts in heading, that must beat carrying the poses by odometry.
+TEST(RbpfGridSlam, TrackingBetweenUpdatesBeatsOdometry) {
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = LoopLog(&truth, 0.01);
+  RbpfGridSlamParams params;
+  params.linear_update_m = 1.0;
+  params.angular_update_rad = 0.5;
+  const double tracked = MeanStepHeadingError(RunFilter(log, 2, params), truth);
+  params.track_between_updates = false;
+  const double odometry = MeanStepHeadingError(RunFilter(log, 2, params), truth);
+  EXPECT_LT(tracked, 0.5 * odometry) << "tracked " << tracked << " rad, odometry " << odometry;
+  EXPECT_LT(tracked, 0.004);
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "common/synthetic_room.hpp"
 #include "slamkit/filters/resampling.hpp"
+#include "slamkit/filters/rbpf_grid_slam.hpp"
 #include "slamkit/filters/scan_matcher.hpp"
+#include "slamkit/sim/laser_sim.hpp"
 
 namespace slamkit {
 namespace {
@@ -33,6 +38,84 @@ TEST(ScanMatcher, RecoversKnownOffsetOnSyntheticMap) {
     EXPECT_GT(EvaluatePose(grid, points, truth, params).score,
               EvaluatePose(grid, points, guess, params).score);
   }
+}
+
+// The score written out cell by cell, as EvaluatePose documents it: the reference for its
+// one-lookup-per-tile fast path, which must agree exactly, near tile edges too.
+MatchQuality ReferenceEvaluate(const OccupancyGrid& grid, const ScanPoints& points,
+                               const Pose2& pose, const ScanMatcherParams& params) {
+  MatchQuality q;
+  const double r = grid.resolution();
+  const double miss_sq = std::pow((params.search_cells + 1) * r, 2);
+  for (std::size_t i = 0; i < points.ends.size(); ++i) {
+    const Eigen::Vector2d end = pose.rotation() * points.ends[i] + pose.translation();
+    const Eigen::Vector2d dir = pose.rotation() * points.directions[i];
+    const CellIndex c = grid.WorldToCell(end), f = grid.WorldToCell(end - r * dir);
+    double best = std::numeric_limits<double>::infinity();
+    for (int dx = -params.search_cells; dx <= params.search_cells; ++dx) {
+      for (int dy = -params.search_cells; dy <= params.search_cells; ++dy) {
+        if (grid.LogOdds({c.x + dx, c.y + dy}) > 0 && grid.LogOdds({f.x + dx, f.y + dy}) < 0) {
+          best = std::min(best, (grid.CellCenter({c.x + dx, c.y + dy}) - end).squaredNorm());
+        }
+      }
+    }
+    const double d_sq = std::min(best, miss_sq);
+    if (std::isfinite(best)) {
+      ++q.matched;
+      q.score += std::exp(-best / std::pow(params.score_sigma_m, 2));
+    }
+    q.log_likelihood -= d_sq * 0.5 / std::pow(params.likelihood_sigma_m, 2);
+  }
+  return q;
+}
+
+TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
+  const OccupancyGrid grid = RoomMap();
+  Rng rng(11);
+  for (int window : {1, 3}) {
+    ScanMatcherParams params;
+    params.search_cells = window;
+    for (int k = 0; k < 200; ++k) {
+      const Pose2 truth(rng.Uniform(-6, 6), rng.Uniform(-4, 4), rng.Uniform(-M_PI, M_PI));
+      const ScanPoints points = PrepareScan(RoomScan(truth), params);
+      const Pose2 pose =
+          truth.Compose(Pose2(rng.Normal(0, 0.05), rng.Normal(0, 0.05), rng.Normal(0, 0.02)));
+      const MatchQuality got = EvaluatePose(grid, points, pose, params);
+      const MatchQuality want = ReferenceEvaluate(grid, points, pose, params);
+      ASSERT_EQ(got.matched, want.matched) << "window " << window << ", pose " << k;
+      ASSERT_NEAR(got.score, want.score, 1e-9 * points.ends.size());
+      ASSERT_NEAR(got.log_likelihood, want.log_likelihood, 1e-9 * points.ends.size());
+    }
+  }
+}
+
+// A corridor whose far part is not mapped yet: nothing but the mapped part's end tells where the
+// scan lies along the corridor, and without the prior the climb drifts along it (by 4 cm here).
+// The prior holds the guess along the corridor and still reduces the sideways offset, which the
+// walls constrain.
+TEST(ScanMatcher, PriorHoldsTheGuessAlongAHalfMappedCorridor) {
+  const FloorPlan corridor{{{{-2.0, -1.025}, {20.0, -1.025}}, {{-2.0, 1.025}, {20.0, 1.025}}}};
+  auto scan_at = [&](const Pose2& pose) {
+    Rng rng(1);
+    LaserSimParams laser;
+    laser.sigma_range_m = 0.0;
+    return SimulateScan(corridor, pose, laser, rng);
+  };
+  OccupancyGrid grid;
+  ScanInsertionParams insertion;
+  insertion.usable_range_m = 4.0;  // maps x up to about 4 m only
+  InsertScan(grid, Pose2(), scan_at(Pose2()), insertion);
+  const Pose2 truth(0.6, 0.0, 0.0);
+  ScanMatcherParams params = TrackingMatcherParams();
+  params.usable_range_m = 8.0;
+  const ScanPoints points = PrepareScan(scan_at(truth), params);
+  const Pose2 guess(0.6, 0.04, 0.0);
+  const MatchResult held = MatchScan(grid, points, guess, params);
+  EXPECT_NEAR(held.pose.x(), truth.x(), 0.01);
+  EXPECT_LT(std::abs(held.pose.y() - truth.y()), 0.5 * std::abs(guess.y() - truth.y()));
+  params.prior_sigma_xy_m = 0.0;
+  const MatchResult slid = MatchScan(grid, points, guess, params);
+  EXPECT_GT(std::abs(slid.pose.x() - truth.x()), 0.03) << "no drift to hold: the test is moot";
 }
 
 TEST(Resampling, SystematicKeepsHeavyParticlesAndNeffMeasuresSpread) {

@@ -137,13 +137,13 @@ TEST(OccupancyGrid, BoundsFollowTheWrittenCells) {
 
 // Writes far away in every direction re-table the tiles; every value written before survives.
 TEST(OccupancyGrid, GrowthInAllDirectionsPreservesValues) {
-  OccupancyGrid grid({.log_odds_min = -7.0f, .log_odds_max = 7.0f});
+  OccupancyGrid grid({.log_odds_min = -3.9f, .log_odds_max = 3.9f});
   const std::vector<CellIndex> cells = {{0, 0},      {1, 1},      {-1, -1},    {63, 64},
                                         {-64, -65},  {-500, -700}, {900, 1200}, {-3000, 5},
                                         {4000, -17}, {7, -9000},  {-2, 8000},  {-6000, -6000}};
   std::map<std::pair<int, int>, float> written;
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    const float value = 0.5f * static_cast<float>(i + 1);  // exact in the 1/4096 steps
+    const float value = 0.25f * static_cast<float>(i + 1);  // exact in the 1/32 steps
     grid.Update(cells[i], value);
     written[{cells[i].x, cells[i].y}] = value;
     for (const auto& [xy, v] : written) {
@@ -208,8 +208,9 @@ void ExpectGridEquals(const OccupancyGrid& grid,
     for (int x = -12; x <= 12; ++x) {
       const auto it = expected.find({x, y});
       const float want = it == expected.end() ? 0.0f : it->second;
-      // Cells hold log-odds in steps of 1/4096: each update rounds by at most half a step.
-      EXPECT_NEAR(grid.LogOdds({x, y}), want, 2e-3) << "cell (" << x << ", " << y << ")";
+      // Cells hold log-odds in steps of 1/32: each update's change rounds by at most half a
+      // step, and no cell here is updated more than 4 times.
+      EXPECT_NEAR(grid.LogOdds({x, y}), want, 4.0 / 64.0) << "cell (" << x << ", " << y << ")";
     }
   }
 }

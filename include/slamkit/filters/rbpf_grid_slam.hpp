@@ -12,6 +12,22 @@
 
 namespace slamkit {
 
+// The matcher that tracks scans between updates. Its guesses are odometry-close (one scan's
+// motion from the previous tracked pose), so it skips the coarse pass and starts with small
+// steps; a tight prior on translation keeps it from sliding along corridors whose ends are not
+// mapped yet, which left it free to correct mainly the heading, where odometry errs most (on
+// Intel: relations 0.0451 m / 1.98° with odometry between updates, 0.0348 m / 0.64° tracked
+// without the prior, 0.0304 m / 0.62° with it).
+inline ScanMatcherParams TrackingMatcherParams() {
+  ScanMatcherParams params;
+  params.coarse_pass = false;
+  params.linear_step_m = 0.02;
+  params.angular_step_rad = 0.02;
+  params.refinements = 3;
+  params.prior_sigma_xy_m = 0.01;
+  return params;
+}
+
 struct RbpfGridSlamParams {
   int particles = 30;
   std::uint64_t seed = 1;
@@ -26,6 +42,16 @@ struct RbpfGridSlamParams {
   double likelihood_gain = 1.0 / 3.0;
   OdometryNoiseParams motion;
   ScanMatcherParams matcher;
+  // Scans between updates do not touch the particles, but each still gets a pose: by default it
+  // is matched against the best particle's map (one match per scan, not per particle), starting
+  // from the previous scan's pose moved by odometry; with `track_between_updates = false` the
+  // poses follow odometry alone from the last update (GMapping's output).
+  bool track_between_updates = true;
+  ScanMatcherParams tracking = TrackingMatcherParams();
+  // A tracked pose further than this from its odometry guess is a slide (along a corridor, into
+  // unmapped space) rather than a correction: the guess is kept.
+  double tracking_max_correction_m = 0.1;
+  double tracking_max_correction_rad = 0.1;
   OccupancyGridParams grid;
   ScanInsertionParams insertion;
 };
@@ -46,8 +72,8 @@ class RbpfGridSlam {
 
   int BestParticle() const;
   const OccupancyGrid& BestMap() const;
-  // The best particle's path: one pose per processed scan (t = the scan's), poses between
-  // updates carried forward by odometry from the particle's pose at the last update.
+  // The best particle's path: one pose per processed scan (t = the scan's); a scan between
+  // updates is placed relative to the particle's pose at the last update as it was tracked.
   Trajectory BestTrajectory() const;
   Pose2 CurrentPose() const;
   int updates() const { return updates_; }
@@ -61,6 +87,7 @@ class RbpfGridSlam {
   void MoveAndWeigh(const LaserScan& scan, const Pose2& delta);
   void ResampleIfNeeded();
   void InsertIntoMaps(const LaserScan& scan, int scan_index);
+  void TrackBetweenUpdates(const LaserScan& scan, int scan_index);
 
   RbpfGridSlamParams params_;
   Rng rng_;
@@ -68,6 +95,7 @@ class RbpfGridSlam {
   struct ScanRecord {
     double t_s;
     Pose2 odometry;
+    Pose2 since_update;  // the scan's pose relative to the particles' poses at the last update
   };
   std::vector<ScanRecord> scans_;
   Pose2 last_update_odometry_;

@@ -20,8 +20,15 @@ struct ScanMatcherParams {
   double angular_step_rad = 0.05;
   int refinements = 5;             // how many times the steps are halved
   double min_score_fraction = 0.15;  // accept a match only if score ≥ this × beams matched
+  // An optional prior around the initial guess: the climb maximises score − (Δxy/σ_xy)² −
+  // (Δθ/σ_θ)², so where the map leaves a direction unconstrained (along a corridor whose end is
+  // not mapped yet) the guess holds instead of drifting. Zero switches a term off.
+  double prior_sigma_xy_m = 0.0;
+  double prior_sigma_theta_rad = 0.0;
   // A coarse pass runs first, with a wider window and score, on every `coarse_beam_stride`-th
-  // beam: it pulls guesses that are several cells off into the fine pass's reach.
+  // beam: it pulls guesses that are several cells off into the fine pass's reach. Guesses that
+  // are known to be close (tracking between filter updates) can skip it.
+  bool coarse_pass = true;
   int coarse_search_cells = 3;
   double coarse_score_sigma_m = 0.15;
   int coarse_beam_stride = 3;
