@@ -22,6 +22,9 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--stt", p.motion.stt, "odometry noise: rad per rad turned")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_flag("!--match-proposal", p.gaussian_proposal,
+                "take each particle's scan match as its pose (ROS GMapping) instead of drawing "
+                "from the Gaussian fitted around it (Grisetti et al. 2007)");
   cmd->add_flag("!--no-tracking", p.track_between_updates,
                 "poses of scans between updates by odometry alone (as GMapping), not tracked "
                 "against the best map");

@@ -67,12 +67,23 @@ void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
   tbb::parallel_for(0, n, [&](int i) {
     Particle& p = particles_[i];
     Rng rng = Rng::ForStream(params_.seed, 1 + std::uint64_t(updates_) * n + i);
-    const Pose2 predicted = SampleOdometryMotion(p.pose, delta, params_.motion, rng);
+    const Pose2 previous = p.pose;
+    const Pose2 predicted = SampleOdometryMotion(previous, delta, params_.motion, rng);
     const MatchResult match = MatchScan(p.map, points, predicted, params_.matcher);
-    p.pose = match.accepted ? match.pose : predicted;
-    const double log_likelihood =
-        match.accepted ? match.quality.log_likelihood
-                       : EvaluatePose(p.map, points, predicted, params_.matcher).log_likelihood;
+    double log_likelihood = 0.0;
+    if (!match.accepted) {
+      p.pose = predicted;
+      log_likelihood = EvaluatePose(p.map, points, predicted, params_.matcher).log_likelihood;
+    } else if (params_.gaussian_proposal) {
+      const ProposalDistribution proposal =
+          GaussianProposal(p.map, points, match.pose, previous, delta, params_.motion,
+                           params_.matcher, params_.proposal);
+      p.pose = SampleProposal(proposal, rng);
+      log_likelihood = proposal.log_normaliser;
+    } else {
+      p.pose = match.pose;
+      log_likelihood = match.quality.log_likelihood;
+    }
     p.log_weight += log_likelihood;
     p.path_log_weight += log_likelihood;
   });

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
+#include "slamkit/filters/gaussian_proposal.hpp"
 #include "slamkit/filters/scan_matcher.hpp"
 #include "slamkit/maps/occupancy_grid.hpp"
 #include "slamkit/models/laser_scan.hpp"
@@ -42,6 +43,12 @@ struct RbpfGridSlamParams {
   double likelihood_gain = 1.0 / 3.0;
   OdometryNoiseParams motion;
   ScanMatcherParams matcher;
+  // The proposal: a draw from the Gaussian fitted around the scan match, weighted by its
+  // normaliser (Grisetti et al. 2007), or with `gaussian_proposal = false` the match itself
+  // (ROS GMapping's shortcut). On Intel (30 particles, seeds 1-5) the Gaussian gave relations
+  // 0.0270 m / 0.54° on average against 0.0276 m / 0.58°, for about 15 % more time.
+  bool gaussian_proposal = true;
+  GaussianProposalParams proposal;
   // Scans between updates do not touch the particles, but each still gets a pose: by default it
   // is matched against the best particle's map (one match per scan, not per particle), starting
   // from the previous scan's pose moved by odometry; with `track_between_updates = false` the

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <Eigen/Core>
+
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/rng.hpp"
 
@@ -17,6 +19,16 @@ struct OdometryNoiseParams {
   double str = 0.05;  // rad per m
   double stt = 0.05;  // rad per rad
 };
+
+// Standard deviations (x, y, θ) of the noise on the increment `delta`, as SampleOdometryMotion
+// draws it.
+Eigen::Vector3d OdometryNoiseSigmas(const Pose2& delta, const OdometryNoiseParams& noise);
+
+// Log-density, up to a constant, that odometry `delta` from `from` ends at `to` (the increment's
+// noise components as independent Gaussians; each σ floored at 1 mm or 1 mrad, so a robot that
+// did not move still has a proper density).
+double OdometryMotionLogDensity(const Pose2& from, const Pose2& delta, const Pose2& to,
+                                const OdometryNoiseParams& noise);
 
 // Draws the pose reached from `pose` after the odometry increment `delta` (robot frame), with
 // each component of the increment perturbed by zero-mean Gaussian noise scaled as above.
