@@ -1,7 +1,9 @@
 // Throughput of occupancy-grid RBPF SLAM on the start of the Intel Research Lab log (scans per
 // second for 10, 30 and 100 particles), and of the scan matcher alone on a map built from it.
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -27,11 +29,13 @@ const CarmenLog* IntelLog() {
   return log.get();
 }
 
+// Args: particles, whether scans between updates are tracked (1) or carried by odometry (0).
 void BM_GridSlamScans(benchmark::State& state) {
   const CarmenLog* log = IntelLog();
   if (!log) return state.SkipWithError("intel.clf not found");
   RbpfGridSlamParams params;
   params.particles = static_cast<int>(state.range(0));
+  params.track_between_updates = state.range(1) != 0;
   int updates = 0;
   for (auto _ : state) {
     RbpfGridSlam slam(params);
@@ -44,26 +48,84 @@ void BM_GridSlamScans(benchmark::State& state) {
   state.counters["updates"] = updates;
 }
 
-// One MatchScan from a pose 10 cm and 3° off, against the map a 30-particle run built.
+// The map a 30-particle run built over the benchmark's scans, and its best path.
+struct BuiltMap {
+  OccupancyGrid map;
+  Trajectory path;
+};
+
+const BuiltMap* IntelMap() {
+  static const std::unique_ptr<BuiltMap> built = []() -> std::unique_ptr<BuiltMap> {
+    const CarmenLog* log = IntelLog();
+    if (!log) return nullptr;
+    RbpfGridSlam slam(RbpfGridSlamParams{});
+    for (const LaserScan& scan : log->scans) slam.ProcessScan(scan);
+    return std::make_unique<BuiltMap>(BuiltMap{slam.BestMap(), slam.BestTrajectory()});
+  }();
+  return built.get();
+}
+
+// One MatchScan of the last scan from a pose 10 cm and 3° off (the particles' matcher, coarse
+// pass included), and from 1 cm and 0.6° off (the tracking matcher).
 void BM_ScanMatcher(benchmark::State& state) {
-  const CarmenLog* log = IntelLog();
-  if (!log) return state.SkipWithError("intel.clf not found");
-  RbpfGridSlamParams params;
-  RbpfGridSlam slam(params);
-  for (const LaserScan& scan : log->scans) slam.ProcessScan(scan);
-  const Trajectory path = slam.BestTrajectory();
-  const LaserScan& scan = log->scans.back();
-  const ScanPoints points = PrepareScan(scan, params.matcher);
-  const Pose2 start = path.back().pose.Compose(Pose2(0.1, 0.0, 0.05));
+  const BuiltMap* built = IntelMap();
+  if (!built) return state.SkipWithError("intel.clf not found");
+  const bool tracking = state.range(0) != 0;
+  const RbpfGridSlamParams defaults;
+  const ScanMatcherParams& params = tracking ? defaults.tracking : defaults.matcher;
+  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), params);
+  const Pose2 offset = tracking ? Pose2(0.01, 0.0, 0.01) : Pose2(0.1, 0.0, 0.05);
+  const Pose2 start = built->path.back().pose.Compose(offset);
   for (auto _ : state) {
-    benchmark::DoNotOptimize(MatchScan(slam.BestMap(), points, start, params.matcher));
+    benchmark::DoNotOptimize(MatchScan(built->map, points, start, params));
   }
   state.counters["beams"] = double(points.ends.size());
 }
 
-BENCHMARK(BM_GridSlamScans)->Arg(10)->Arg(30)->Arg(100)->Unit(benchmark::kMillisecond)
-    ->Iterations(1);
-BENCHMARK(BM_ScanMatcher)->Unit(benchmark::kMicrosecond);
+// The reference for BM_EvaluatePose: the same score with every cell read on its own (a tile
+// lookup per cell), as EvaluatePose did before it read a window's cells from one tile.
+double ReferenceScore(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& pose,
+                      const ScanMatcherParams& params) {
+  double score = 0.0;
+  const double r = grid.resolution(), inv = 1.0 / (params.score_sigma_m * params.score_sigma_m);
+  for (std::size_t i = 0; i < points.ends.size(); ++i) {
+    const Eigen::Vector2d end = pose.rotation() * points.ends[i] + pose.translation();
+    const CellIndex c = grid.WorldToCell(end);
+    const CellIndex f = grid.WorldToCell(end - r * (pose.rotation() * points.directions[i]));
+    double best = std::numeric_limits<double>::infinity();
+    for (int dx = -params.search_cells; dx <= params.search_cells; ++dx) {
+      for (int dy = -params.search_cells; dy <= params.search_cells; ++dy) {
+        if (grid.LogOddsSteps({c.x + dx, c.y + dy}) <= 0) continue;
+        if (grid.LogOddsSteps({f.x + dx, f.y + dy}) >= 0) continue;
+        best = std::min(best, (grid.CellCenter({c.x + dx, c.y + dy}) - end).squaredNorm());
+      }
+    }
+    if (std::isfinite(best)) score += std::exp(-best * inv);
+  }
+  return score;
+}
+
+// One evaluation of the score at a pose 2 cm and 1° off; arg 1 runs the cell-by-cell reference.
+void BM_EvaluatePose(benchmark::State& state) {
+  const BuiltMap* built = IntelMap();
+  if (!built) return state.SkipWithError("intel.clf not found");
+  const ScanMatcherParams params;
+  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), params);
+  const Pose2 pose = built->path.back().pose.Compose(Pose2(0.02, 0.0, 0.0175));
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      benchmark::DoNotOptimize(EvaluatePose(built->map, points, pose, params));
+    } else {
+      benchmark::DoNotOptimize(ReferenceScore(built->map, points, pose, params));
+    }
+  }
+}
+
+BENCHMARK(BM_GridSlamScans)
+    ->Args({10, 1})->Args({30, 1})->Args({100, 1})->Args({30, 0})
+    ->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ScanMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_EvaluatePose)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace slamkit
