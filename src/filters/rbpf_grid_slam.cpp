@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include "slamkit/filters/resampling.hpp"
 
@@ -48,10 +49,20 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
   const Pose2 delta = last_update_odometry_.Between(scan.odometry);
   if (delta.translation().norm() < params_.linear_update_m &&
       std::abs(delta.theta()) < params_.angular_update_rad) {
-    TrackBetweenUpdates(scan, scan_index);
+    pending_.push_back({scan_index, params_.track_between_updates
+                                        ? PrepareScan(scan, params_.tracking)
+                                        : ScanPoints{}});
     return false;
   }
-  MoveAndWeigh(scan, delta);
+  {
+    // The scans since the last update are tracked against the best map while the particles
+    // move: the particles write only their poses and weights here, never their maps.
+    const Particle& best = particles_[BestParticle()];
+    tbb::task_group tracking;
+    tracking.run([this, &map = best.map, anchor = best.pose] { TrackPending(map, anchor); });
+    MoveAndWeigh(scan, delta);
+    tracking.wait();
+  }
   ResampleIfNeeded();
   InsertIntoMaps(scan, scan_index);
   last_update_odometry_ = scan.odometry;
@@ -90,25 +101,33 @@ void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
 }
 
 // The scans between updates leave the particles where they are; each one's pose relative to
-// the last update is tracked against the best particle's map, which is much closer to the truth
-// than odometry over up to a metre (the rotational error on Intel's relations is dominated by
-// these scans otherwise).
-void RbpfGridSlam::TrackBetweenUpdates(const LaserScan& scan, int scan_index) {
-  const ScanRecord& previous = scans_[scan_index - 1];
-  Pose2 since = previous.since_update.Compose(previous.odometry.Between(scan.odometry));
-  if (params_.track_between_updates) {
-    const Particle& best = particles_[BestParticle()];
-    const ScanPoints points = PrepareScan(scan, params_.tracking);
-    const Pose2 guess = best.pose.Compose(since);
-    const MatchResult match = MatchScan(best.map, points, guess, params_.tracking);
-    const Pose2 correction = guess.Between(match.pose);
-    if (match.accepted &&
-        correction.translation().norm() <= params_.tracking_max_correction_m &&
-        std::abs(correction.theta()) <= params_.tracking_max_correction_rad) {
-      since = best.pose.Between(match.pose);
+// the last update is tracked against the best particle's map (`map`, with that particle's pose
+// `anchor`), which is much closer to the truth than odometry over up to a metre: on Intel the
+// rotational error of the relations is dominated by these scans otherwise.
+void RbpfGridSlam::TrackPending(const OccupancyGrid& map, const Pose2& anchor) {
+  for (const PendingScan& pending : pending_) {
+    const ScanRecord& previous = scans_[pending.scan_index - 1];
+    ScanRecord& current = scans_[pending.scan_index];
+    Pose2 since = previous.since_update.Compose(previous.odometry.Between(current.odometry));
+    if (params_.track_between_updates) {
+      const Pose2 guess = anchor.Compose(since);
+      const MatchResult match = MatchScan(map, pending.points, guess, params_.tracking);
+      const Pose2 correction = guess.Between(match.pose);
+      if (match.accepted &&
+          correction.translation().norm() <= params_.tracking_max_correction_m &&
+          std::abs(correction.theta()) <= params_.tracking_max_correction_rad) {
+        since = anchor.Between(match.pose);
+      }
     }
+    current.since_update = since;
   }
-  scans_[scan_index].since_update = since;
+  pending_.clear();
+}
+
+void RbpfGridSlam::FinishTracking() {
+  if (pending_.empty() || particles_.empty()) return;
+  const Particle& best = particles_[BestParticle()];
+  TrackPending(best.map, best.pose);
 }
 
 void RbpfGridSlam::ResampleIfNeeded() {
@@ -170,13 +189,15 @@ int RbpfGridSlam::BestParticle() const {
 
 const OccupancyGrid& RbpfGridSlam::BestMap() const { return particles_[BestParticle()].map; }
 
-Pose2 RbpfGridSlam::CurrentPose() const {
+Pose2 RbpfGridSlam::CurrentPose() {
+  FinishTracking();
   if (particles_.empty()) return Pose2();
   const Particle& p = particles_[BestParticle()];
   return p.pose.Compose(scans_.back().since_update);
 }
 
-Trajectory RbpfGridSlam::BestTrajectory() const {
+Trajectory RbpfGridSlam::BestTrajectory() {
+  FinishTracking();
   Trajectory out(scans_.size());
   if (particles_.empty()) return out;
   std::vector<const PathNode*> nodes;

@@ -81,8 +81,9 @@ class RbpfGridSlam {
   const OccupancyGrid& BestMap() const;
   // The best particle's path: one pose per processed scan (t = the scan's); a scan between
   // updates is placed relative to the particle's pose at the last update as it was tracked.
-  Trajectory BestTrajectory() const;
-  Pose2 CurrentPose() const;
+  // Scans since the last update are tracked here if the next update has not done it yet.
+  Trajectory BestTrajectory();
+  Pose2 CurrentPose();
   int updates() const { return updates_; }
   int resamples() const { return resamples_; }
   double last_neff() const { return last_neff_; }
@@ -94,7 +95,8 @@ class RbpfGridSlam {
   void MoveAndWeigh(const LaserScan& scan, const Pose2& delta);
   void ResampleIfNeeded();
   void InsertIntoMaps(const LaserScan& scan, int scan_index);
-  void TrackBetweenUpdates(const LaserScan& scan, int scan_index);
+  void TrackPending(const OccupancyGrid& map, const Pose2& anchor);
+  void FinishTracking();
 
   RbpfGridSlamParams params_;
   Rng rng_;
@@ -105,6 +107,12 @@ class RbpfGridSlam {
     Pose2 since_update;  // the scan's pose relative to the particles' poses at the last update
   };
   std::vector<ScanRecord> scans_;
+  // Scans since the last update, waiting to be tracked (points empty without tracking).
+  struct PendingScan {
+    int scan_index;
+    ScanPoints points;
+  };
+  std::vector<PendingScan> pending_;
   Pose2 last_update_odometry_;
   int updates_ = 0;
   int resamples_ = 0;
