@@ -1,6 +1,8 @@
 // `slamkit gridsim`: occupancy-grid RBPF SLAM on a simulated laser run through a floor plan
-// (SPEC S4's square maze by default), compared with the true path.
+// (SPEC S4's square maze by default, a map_server map or a walls file), compared with the true
+// path.
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +17,7 @@
 #include "progress.hpp"
 #include "slamkit/eval/grid_sim.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/floor_plan_reader.hpp"
 #include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/waypoints_reader.hpp"
@@ -38,15 +41,26 @@ struct GridSimOptions {
   RbpfGridSlamParams params;
 };
 
+// A plan file is a map_server map when its name says YAML, else a walls file: a plan that is
+// neither fails on its first line with the walls format's message.
+bool IsMapServerMap(const std::filesystem::path& plan) {
+  std::string ext = plan.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".yaml" || ext == ".yml";
+}
+
 // The floor plan and the route the options name; errors (files, a missing route) come here,
 // before the long run.
 std::pair<FloorPlan, RouteParams> PlanAndRoute(const GridSimOptions& o) {
   const bool maze = o.plan == "maze";
   if (!maze && o.waypoints.empty()) {
-    throw InputError(fmt::format("--plan {}: an image plan needs its route: --waypoints FILE "
+    throw InputError(fmt::format("--plan {}: a plan file needs its route: --waypoints FILE "
                                  "(one `x y` line per waypoint, in metres)", o.plan));
   }
-  FloorPlan plan = maze ? MakeSquareMaze() : FloorPlanFromOccupancy(ReadOccupancyImage(o.plan));
+  FloorPlan plan = maze                     ? MakeSquareMaze()
+                   : IsMapServerMap(o.plan) ? FloorPlanFromOccupancy(ReadOccupancyImage(o.plan))
+                                            : ReadFloorPlanFile(o.plan);
   // A given route turns at its waypoints as tightly as the maze route does.
   RouteParams route = MazeRoute({}, o.sim.route.loops);
   if (!o.waypoints.empty()) route.waypoints_m = ReadWaypoints(o.waypoints);
@@ -108,10 +122,12 @@ int RunGridSimCommand(GridSimOptions o) {
 }
 
 void AddSimulationOptions(CLI::App* cmd, GridSimOptions& o) {
-  cmd->add_option("--plan", o.plan, "'maze' (SPEC S4's 25 m maze) or a map_server map.yaml")
+  cmd->add_option("--plan", o.plan,
+                  "'maze' (SPEC S4's 25 m maze), a map_server map.yaml, or any other file: "
+                  "walls `x1 y1 x2 y2` and polygons `poly x1 y1 x2 y2 x3 y3 ...` in metres")
       ->capture_default_str();
   cmd->add_option("--waypoints", o.waypoints,
-                  "route: `x y` lines in metres (required with a map.yaml plan)")
+                  "route: `x y` lines in metres (required with a plan file)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--sim-seed", o.sim_seed, "random seed of the simulated run")
       ->capture_default_str();
@@ -136,7 +152,8 @@ void AddSimulationOptions(CLI::App* cmd, GridSimOptions& o) {
 void RegisterGridSim(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<GridSimOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "gridsim", "occupancy-grid RBPF SLAM on a simulated laser run (SPEC S4 maze or a map)");
+      "gridsim",
+      "occupancy-grid RBPF SLAM on a simulated laser run (SPEC S4 maze, a map or a walls file)");
   cmd->add_option("--out", o->out, "output directory")->required();
   AddSimulationOptions(cmd, *o);
   AddGridFilterOptions(cmd, o->params);

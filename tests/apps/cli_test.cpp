@@ -77,6 +77,8 @@ TEST(Cli, GridSimBadInputsExitTwoNamingTheProblem) {
   std::ofstream(dir / "map.yaml") << "image: map.pgm\nresolution: 0.1\norigin: [0, 0, 0]\n";
   std::ofstream(dir / "nores.yaml") << "image: map.pgm\norigin: [0, 0, 0]\n";
   std::ofstream(dir / "route.txt") << "1 1\n2 oops\n";
+  std::ofstream(dir / "walls.txt") << "poly 0 0 4 0 4 4 0 4\n1 nan 2 2\n";
+  std::ofstream(dir / "good_route.txt") << "1 1\n3 1\n";
   const std::string out = " --out " + (dir / "out").string();
   const std::pair<std::string, std::vector<std::string>> cases[] = {
       {"--plan " + (dir / "map.yaml").string(), {"--waypoints"}},
@@ -87,6 +89,10 @@ TEST(Cli, GridSimBadInputsExitTwoNamingTheProblem) {
       {"--waypoints " + (dir / "route.txt").string(), {"route.txt:2", "'y'"}},
       {"--plan " + (dir / "none.yaml").string() + " --waypoints " + (dir / "route.txt").string(),
        {"none.yaml"}},
+      {"--plan " + (dir / "walls.txt").string(), {"--waypoints"}},
+      {"--plan " + (dir / "walls.txt").string() + " --waypoints " +
+           (dir / "good_route.txt").string(),
+       {"walls.txt:2", "'y1'"}},
       {"--speed 5", {"--speed"}},
       {"--particles 0", {"--particles"}}};
   for (const auto& [args, parts] : cases) {

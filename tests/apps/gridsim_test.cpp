@@ -71,5 +71,24 @@ TEST(GridSim, ShortMazeRunWritesTheContractFilesAndBeatsOdometry) {
   EXPECT_EQ(nlohmann::json::parse(ReadText(dir / "again" / "metrics.json"))["scans"], 101);
 }
 
+// The shipped walls-file example, as README runs it but with 5 particles and 30 s of driving.
+// With a heading noise of 0.2 rad/s the odometry drifts; the room's walls, pillar and stub wall
+// pin the filter down. Measured for this run: ATE 0.011 m RMS, the odometry's 0.27 m RMS.
+TEST(GridSim, WallsFilePlanRunBeatsOdometry) {
+  const fs::path dir = FreshDir("gridsim_walls");
+  const fs::path plans = fs::path(SLAMKIT_SOURCE_DIR) / "examples" / "plans";
+  const auto r = RunCli("gridsim --plan " + (plans / "room_with_pillar.txt").string() +
+                        " --waypoints " + (plans / "room_with_pillar_route.txt").string() +
+                        " --particles 5 --max-steps 300 --odom-sigma-omega 0.2 --sim-seed 2 "
+                        "--seed 1 --out " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto m = nlohmann::json::parse(ReadText(dir / "out" / "metrics.json"));
+  EXPECT_EQ(m["scans"], 301);
+  const double ate = m["ate_rmse_m"].get<double>();
+  const double odometry_ate = m["odometry_ate_rmse_m"].get<double>();
+  EXPECT_LT(ate, 0.1);
+  EXPECT_LT(ate, 0.5 * odometry_ate);
+}
+
 }  // namespace
 }  // namespace slamkit
