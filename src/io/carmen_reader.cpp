@@ -36,7 +36,7 @@ class CarmenParser {
   // One non-blank, non-comment line; throws InputError for a malformed one.
   void Parse(std::span<const std::string_view> tokens, int line) {
     const std::string_view kind = tokens[0];
-    const carmen::Fields fields(fmt::format("{}:{}", file_, line), kind, tokens.subspan(1));
+    const text::Fields fields(fmt::format("{}:{}", file_, line), kind, tokens.subspan(1));
     if (kind == "ODOM") {
       const StampedPose odom = carmen::ParseOdom(fields);
       Tick(fields, odom.t_s, line, &odom_clock_);
@@ -54,13 +54,13 @@ class CarmenParser {
   CarmenLog Finish();
 
  private:
-  void AddScan(const carmen::Fields& fields, LaserScan scan, int line) {
+  void AddScan(const text::Fields& fields, LaserScan scan, int line) {
     Tick(fields, scan.t_s, line, &scan_clock_);
     log_.scans.push_back(std::move(scan));
   }
 
   // Checks that t_s does not go back in its stream, then advances the stream's clock.
-  void Tick(const carmen::Fields& fields, double t_s, int line, StreamClock* clock) {
+  void Tick(const text::Fields& fields, double t_s, int line, StreamClock* clock) {
     // 0 (or, in GMapping-written logs, a denormal like 1.08499e-42) stands for "no timestamp".
     if (t_s < kNoTimestampS) return;
     if (clock->line > 0 && t_s < clock->t_s - kTimeToleranceS) {
@@ -110,13 +110,13 @@ CarmenLog CarmenParser::Finish() {
 }  // namespace
 
 CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptions& options) {
-  carmen::LineReader reader(path);
+  text::LineReader reader(path);
   CarmenParser parser(path, options);
   int skipped = 0;
   std::vector<std::string_view> tokens;
   std::string_view line;
   while (reader.Next(&line)) {
-    carmen::Tokenize(line, &tokens);
+    text::Tokenize(line, &tokens);
     if (tokens.empty() || tokens[0].starts_with('#')) continue;
     try {
       parser.Parse(tokens, reader.line_number());

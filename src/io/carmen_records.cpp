@@ -2,19 +2,18 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cfloat>
-#include <charconv>
-#include <cstring>
+#include <cstddef>
+#include <iterator>
+#include <string_view>
 
 #include "slamkit/core/angle.hpp"
-#include "slamkit/io/error.hpp"
 
 namespace slamkit::carmen {
-namespace {
 
-constexpr std::size_t kInitialBuffer = std::size_t{1} << 16;
-constexpr unsigned kZlibBuffer = 1u << 17;
+using text::Fields;
+
+namespace {
 
 constexpr const char* kOdomFields[] = {"x",         "y",    "theta",           "tv", "rv", "accel",
                                        "timestamp", "host", "logger_timestamp"};
@@ -41,102 +40,6 @@ float Range(const Fields& fields, std::size_t i, int beam) {
 }
 
 }  // namespace
-
-LineReader::LineReader(const std::filesystem::path& path)
-    : path_(path.string()), buffer_(kInitialBuffer) {
-  file_ = gzopen(path_.c_str(), "rb");
-  if (file_ == nullptr) throw InputError(path_ + ": cannot open file");
-  gzbuffer(file_, kZlibBuffer);
-}
-
-LineReader::~LineReader() { gzclose(file_); }
-
-bool LineReader::Next(std::string_view* line) {
-  while (true) {
-    const char* data = buffer_.data();
-    const void* newline = std::memchr(data + begin_, '\n', end_ - begin_);
-    if (newline != nullptr || (eof_ && begin_ < end_)) {
-      const std::size_t stop =
-          newline != nullptr ? static_cast<const char*>(newline) - data : end_;
-      *line = std::string_view(data + begin_, stop - begin_);
-      if (line->ends_with('\r')) line->remove_suffix(1);
-      begin_ = std::min(stop + 1, end_);
-      ++line_number_;
-      return true;
-    }
-    if (eof_ || !Refill()) return false;
-  }
-}
-
-// Moves the unread bytes to the front (growing the buffer for a line longer than it) and reads
-// more; false at the end of the file.
-bool LineReader::Refill() {
-  std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
-  end_ -= begin_;
-  begin_ = 0;
-  if (end_ == buffer_.size()) buffer_.resize(2 * buffer_.size());
-  const unsigned room = static_cast<unsigned>(buffer_.size() - end_);
-  const int read = gzread(file_, buffer_.data() + end_, room);
-  int code = Z_OK;
-  const char* message = gzerror(file_, &code);
-  if (read < 0) throw InputError(fmt::format("{}: read error ({})", path_, message));
-  if (read == 0) {
-    if (code == Z_BUF_ERROR) throw InputError(path_ + ": truncated gzip file");
-    eof_ = true;
-    return begin_ < end_;
-  }
-  end_ += static_cast<std::size_t>(read);
-  return true;
-}
-
-void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
-  tokens->clear();
-  std::size_t i = 0;
-  while (true) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-    if (i == line.size()) return;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    tokens->push_back(line.substr(start, i - start));
-  }
-}
-
-void Fields::Fail(const FieldName& field, std::string_view reason) const {
-  const std::string name = field.index >= 0 ? fmt::format("{}{}", field.base, field.index)
-                                            : std::string(field.base);
-  if (kind_.empty()) throw InputError(fmt::format("{}: field '{}': {}", where_, name, reason));
-  throw InputError(fmt::format("{}: {} field '{}': {}", where_, kind_, name, reason));
-}
-
-void Fields::Expect(std::size_t count, std::span<const char* const> names) const {
-  if (size() < count) Fail({names[size()]}, "missing");
-  if (size() > count) {
-    const std::string kind = kind_.empty() ? "a line" : std::string(kind_);
-    throw InputError(fmt::format("{}: {} has {} fields, expected {}", where_, kind, size(), count));
-  }
-}
-
-double Fields::Number(std::size_t i, const FieldName& field) const {
-  const std::string_view text = tokens_[i];
-  double value = 0.0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) {
-    Fail(field, fmt::format("not a number ('{}')", text));
-  }
-  if (!std::isfinite(value)) Fail(field, fmt::format("not a finite number ('{}')", text));
-  return value;
-}
-
-int Fields::Count(std::size_t i, const FieldName& field) const {
-  const std::string_view text = tokens_[i];
-  int value = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size()) {
-    Fail(field, fmt::format("not an integer ('{}')", text));
-  }
-  if (value < 0) Fail(field, fmt::format("negative count ('{}')", text));
-  return value;
-}
 
 std::pair<std::string, std::string> ParseParam(const Fields& fields, FrontLaser* laser) {
   constexpr const char* kNames[] = {"name", "value"};

@@ -13,8 +13,8 @@
 
 #include <Eigen/Core>
 
-#include "carmen_records.hpp"  // the line reader and field checks shared by the text readers
 #include "slamkit/io/error.hpp"
+#include "text_records.hpp"
 
 namespace slamkit {
 namespace {
@@ -23,13 +23,13 @@ constexpr std::string_view kPolyKeyword = "poly";
 constexpr int kMinPolygonPoints = 3;
 
 // Point k (1-based): the fields `x<k> y<k>`.
-Eigen::Vector2d PointAt(const carmen::Fields& fields, int k) {
+Eigen::Vector2d PointAt(const text::Fields& fields, int k) {
   const std::size_t i = 2 * static_cast<std::size_t>(k - 1);
   return {fields.Number(i, {"x", k}), fields.Number(i + 1, {"y", k})};
 }
 
 // A zero-length wall is almost always a typo, and would be invisible to the laser anyway.
-void CheckDistinct(const carmen::Fields& fields, const std::vector<Eigen::Vector2d>& points,
+void CheckDistinct(const text::Fields& fields, const std::vector<Eigen::Vector2d>& points,
                    int k, int previous, std::string_view hint) {
   if (points[k - 1] != points[previous - 1]) return;
   const std::string name = fmt::format("x{} y{}", k, k);
@@ -38,7 +38,7 @@ void CheckDistinct(const carmen::Fields& fields, const std::vector<Eigen::Vector
 }
 
 // `x1 y1 x2 y2`.
-void ParseWall(const std::string& where, const carmen::Fields& fields,
+void ParseWall(const std::string& where, const text::Fields& fields,
                std::vector<WallSegment>* walls) {
   if (fields.size() != 4) {
     throw InputError(fmt::format("{}: expected 4 numbers `x1 y1 x2 y2` (or `poly x1 y1 x2 y2 "
@@ -50,7 +50,7 @@ void ParseWall(const std::string& where, const carmen::Fields& fields,
 }
 
 // `poly x1 y1 ... xn yn` (the fields after the keyword): n walls around a closed polygon.
-void ParsePolygon(const std::string& where, const carmen::Fields& fields,
+void ParsePolygon(const std::string& where, const text::Fields& fields,
                   std::vector<WallSegment>* walls) {
   if (fields.size() % 2 != 0) {
     throw InputError(fmt::format("{}: poly has {} numbers, expected `x y` pairs (an even count)",
@@ -72,19 +72,19 @@ void ParsePolygon(const std::string& where, const carmen::Fields& fields,
 }  // namespace
 
 FloorPlan ReadFloorPlanFile(const std::filesystem::path& path) {
-  carmen::LineReader reader(path);
+  text::LineReader reader(path);
   std::vector<WallSegment> walls;
   std::vector<std::string_view> tokens;
   std::string_view line;
   while (reader.Next(&line)) {
-    carmen::Tokenize(line.substr(0, line.find('#')), &tokens);  // `#` to the end: a comment
+    text::Tokenize(line.substr(0, line.find('#')), &tokens);  // `#` to the end: a comment
     if (tokens.empty()) continue;
     const std::string where = fmt::format("{}:{}", path.string(), reader.line_number());
     if (tokens[0] == kPolyKeyword) {
-      ParsePolygon(where, carmen::Fields(where, kPolyKeyword, std::span(tokens).subspan(1)),
+      ParsePolygon(where, text::Fields(where, kPolyKeyword, std::span(tokens).subspan(1)),
                    &walls);
     } else {
-      ParseWall(where, carmen::Fields(where, "", tokens), &walls);
+      ParseWall(where, text::Fields(where, "", tokens), &walls);
     }
   }
   if (walls.empty()) {

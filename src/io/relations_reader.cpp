@@ -4,9 +4,9 @@
 #include <string_view>
 #include <vector>
 
-#include "carmen_records.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 #include "slamkit/io/error.hpp"
+#include "text_records.hpp"
 
 namespace slamkit {
 namespace {
@@ -15,7 +15,7 @@ constexpr const char* kFieldNames[] = {"t1", "t2", "x", "y", "z", "roll", "pitch
 // z, roll and pitch of a planar relation: zero up to rounding.
 constexpr double kOutOfPlaneTolerance = 1e-6;
 
-PoseRelation ParseRelation(const carmen::Fields& fields) {
+PoseRelation ParseRelation(const text::Fields& fields) {
   fields.Expect(std::size(kFieldNames), kFieldNames);
   double values[std::size(kFieldNames)];
   for (std::size_t i = 0; i < std::size(kFieldNames); ++i) {
@@ -33,14 +33,14 @@ PoseRelation ParseRelation(const carmen::Fields& fields) {
 }  // namespace
 
 std::vector<PoseRelation> ReadRelations(const std::filesystem::path& path) {
-  carmen::LineReader reader(path);
+  text::LineReader reader(path);
   std::vector<PoseRelation> relations;
   std::vector<std::string_view> tokens;
   std::string_view line;
   while (reader.Next(&line)) {
-    carmen::Tokenize(line, &tokens);
+    text::Tokenize(line, &tokens);
     if (tokens.empty() || tokens[0].starts_with('#')) continue;
-    const carmen::Fields fields(fmt::format("{}:{}", path.string(), reader.line_number()), "",
+    const text::Fields fields(fmt::format("{}:{}", path.string(), reader.line_number()), "",
                                 tokens);
     relations.push_back(ParseRelation(fields));
   }
