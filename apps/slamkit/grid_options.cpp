@@ -25,9 +25,11 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
   cmd->add_flag("!--match-proposal", p.gaussian_proposal,
                 "take each particle's scan match as its pose (ROS GMapping) instead of drawing "
                 "from the Gaussian fitted around it (Grisetti et al. 2007)");
+  cmd->add_flag("!--odometry-motion", p.motion_from_tracking,
+                "move the particles by raw odometry between updates, not by the tracked motion");
   cmd->add_flag("!--no-tracking", p.track_between_updates,
                 "poses of scans between updates by odometry alone (as GMapping), not tracked "
-                "against the best map");
+                "against the best map; the particles then move by odometry too");
 }
 
 void FinishGridFilterOptions(RbpfGridSlamParams& p) {

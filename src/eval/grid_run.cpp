@@ -37,6 +37,7 @@ nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& par
                       {"linear_update_m", params.linear_update_m},
                       {"angular_update_rad", params.angular_update_rad},
                       {"track_between_updates", params.track_between_updates},
+                      {"motion_from_tracking", params.motion_from_tracking},
                       {"gaussian_proposal", params.gaussian_proposal},
                       {"wall_time_s", r.wall_time_s},
                       {"scans_per_s", r.wall_time_s > 0 ? r.scans / r.wall_time_s : 0.0},

@@ -54,7 +54,11 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
                                         : ScanPoints{}});
     return false;
   }
-  {
+  if (params_.track_between_updates && params_.motion_from_tracking) {
+    FinishTracking();
+    const ScanRecord& previous = scans_[scan_index - 1];
+    MoveAndWeigh(scan, previous.since_update.Compose(previous.odometry.Between(scan.odometry)));
+  } else {
     // The scans since the last update are tracked against the best map while the particles
     // move: the particles write only their poses and weights here, never their maps.
     const Particle& best = particles_[BestParticle()];

@@ -91,5 +91,34 @@ TEST(RbpfGridSlam, TrackingBetweenUpdatesBeatsOdometry) {
   EXPECT_LT(tracked, 0.004);
 }
 
+double MaxPositionError(const Trajectory& estimate, const std::vector<Pose2>& truth) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    const Pose2 true_rel = truth.front().Between(truth[k]);
+    worst = std::max(worst, (estimate[k].pose.translation() - true_rel.translation()).norm());
+  }
+  return worst;
+}
+
+// With the particles' own matching switched off and no motion noise, each particle moves
+// exactly by the motion it is given: the tracked motion must keep the path near the truth where
+// biased odometry drifts off.
+TEST(RbpfGridSlam, ParticlesMoveByTheTrackedMotion) {
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = LoopLog(&truth, 0.01);
+  RbpfGridSlamParams params;
+  params.linear_update_m = 1.0;
+  params.angular_update_rad = 0.5;
+  params.motion = {.srr = 0.0, .srt = 0.0, .str = 0.0, .stt = 0.0};
+  params.matcher.min_score_fraction = 2.0;  // no particle match is ever accepted
+  const double tracked = MaxPositionError(RunFilter(log, 2, params), truth);
+  params.motion_from_tracking = false;
+  const double odometry = MaxPositionError(RunFilter(log, 2, params), truth);
+  // Measured: 0.62 m against 5.4 m (the tracked translation still carries the odometry's 3 %
+  // scale error: the tracking prior leaves translation mostly to odometry).
+  EXPECT_LT(tracked, 1.0);
+  EXPECT_GT(odometry, 5.0 * tracked) << "tracked " << tracked << " m, odometry " << odometry;
+}
+
 }  // namespace
 }  // namespace slamkit

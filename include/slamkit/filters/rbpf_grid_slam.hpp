@@ -55,6 +55,12 @@ struct RbpfGridSlamParams {
   // poses follow odometry alone from the last update (GMapping's output).
   bool track_between_updates = true;
   ScanMatcherParams tracking = TrackingMatcherParams();
+  // The particles move by the tracked motion since the last update (the best particle's, the
+  // last scan's tracked pose plus one odometry step) instead of raw odometry: a better prior
+  // where odometry drifts in heading. On Intel (30 particles, seeds 1-10) relations averaged
+  // 0.0269 m / 0.537° (worst seed 0.0301 m) against 0.0278 m / 0.550° (worst 0.0324 m), for
+  // giving up tracking concurrently with the particles (it must finish first).
+  bool motion_from_tracking = true;
   // A tracked pose further than this from its odometry guess is a slide (along a corridor, into
   // unmapped space) rather than a correction: the guess is kept.
   double tracking_max_correction_m = 0.1;
