@@ -31,17 +31,29 @@ std::vector<LaserScan> LoopLog(std::vector<Pose2>* truth, double heading_drift_r
   return log;
 }
 
+RbpfGridSlamParams UpdatesEvery(double linear_m, double angular_rad) {
+  RbpfGridSlamParams params;
+  params.linear_update_m = linear_m;
+  params.angular_update_rad = angular_rad;
+  return params;
+}
+
 Trajectory RunFilter(const std::vector<LaserScan>& log, int threads,
-                     RbpfGridSlamParams params = {}) {
+                     RbpfGridSlamParams params = UpdatesEvery(0.5, 0.3)) {
   const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
   params.particles = 10;
-  if (params.linear_update_m == RbpfGridSlamParams{}.linear_update_m) {
-    params.linear_update_m = 0.5;
-    params.angular_update_rad = 0.3;
-  }
   RbpfGridSlam slam(params);
   for (const LaserScan& s : log) slam.ProcessScan(s);
   return slam.BestTrajectory();
+}
+
+double MaxPositionError(const Trajectory& estimate, const std::vector<Pose2>& truth) {
+  double worst = 0.0;
+  for (std::size_t k = 0; k < truth.size(); ++k) {
+    const Pose2 true_rel = truth.front().Between(truth[k]);
+    worst = std::max(worst, (estimate[k].pose.translation() - true_rel.translation()).norm());
+  }
+  return worst;
 }
 
 TEST(RbpfGridSlam, TracksALoopBetterThanOdometryAndIsDeterministic) {
@@ -81,23 +93,13 @@ double MeanStepHeadingError(const Trajectory& estimate, const std::vector<Pose2>
 TEST(RbpfGridSlam, TrackingBetweenUpdatesBeatsOdometry) {
   std::vector<Pose2> truth;
   const std::vector<LaserScan> log = LoopLog(&truth, 0.01);
-  RbpfGridSlamParams params;
-  params.linear_update_m = 1.0;
-  params.angular_update_rad = 0.5;
+  // Several scans lie between updates.
+  RbpfGridSlamParams params = UpdatesEvery(1.0, 0.5);
   const double tracked = MeanStepHeadingError(RunFilter(log, 2, params), truth);
   params.track_between_updates = false;
   const double odometry = MeanStepHeadingError(RunFilter(log, 2, params), truth);
   EXPECT_LT(tracked, 0.5 * odometry) << "tracked " << tracked << " rad, odometry " << odometry;
   EXPECT_LT(tracked, 0.004);
-}
-
-double MaxPositionError(const Trajectory& estimate, const std::vector<Pose2>& truth) {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < truth.size(); ++k) {
-    const Pose2 true_rel = truth.front().Between(truth[k]);
-    worst = std::max(worst, (estimate[k].pose.translation() - true_rel.translation()).norm());
-  }
-  return worst;
 }
 
 // With the particles' own matching switched off and no motion noise, each particle moves
@@ -106,9 +108,8 @@ double MaxPositionError(const Trajectory& estimate, const std::vector<Pose2>& tr
 TEST(RbpfGridSlam, ParticlesMoveByTheTrackedMotion) {
   std::vector<Pose2> truth;
   const std::vector<LaserScan> log = LoopLog(&truth, 0.01);
-  RbpfGridSlamParams params;
-  params.linear_update_m = 1.0;
-  params.angular_update_rad = 0.5;
+  // Several scans lie between updates.
+  RbpfGridSlamParams params = UpdatesEvery(1.0, 0.5);
   params.motion = {.srr = 0.0, .srt = 0.0, .str = 0.0, .stt = 0.0};
   params.matcher.min_score_fraction = 2.0;  // no particle match is ever accepted
   const double tracked = MaxPositionError(RunFilter(log, 2, params), truth);
