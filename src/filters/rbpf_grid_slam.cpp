@@ -54,19 +54,7 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
                                         : ScanPoints{}});
     return false;
   }
-  if (params_.track_between_updates && params_.motion_from_tracking) {
-    FinishTracking();
-    const ScanRecord& previous = scans_[scan_index - 1];
-    MoveAndWeigh(scan, previous.since_update.Compose(previous.odometry.Between(scan.odometry)));
-  } else {
-    // The scans since the last update are tracked against the best map while the particles
-    // move: the particles write only their poses and weights here, never their maps.
-    const Particle& best = particles_[BestParticle()];
-    tbb::task_group tracking;
-    tracking.run([this, &map = best.map, anchor = best.pose] { TrackPending(map, anchor); });
-    MoveAndWeigh(scan, delta);
-    tracking.wait();
-  }
+  TrackAndMove(scan, scan_index, delta);
   ResampleIfNeeded();
   InsertIntoMaps(scan, scan_index);
   last_update_odometry_ = scan.odometry;
@@ -74,7 +62,26 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
   return true;
 }
 
-// SPEC S4 (GMapping's proposal): sample the odometry motion, refine it by matching the scan
+// Brings the tracking of the scans since the last update up to date and moves the particles:
+// by the tracked motion (the last tracked pose plus one odometry step) when it is used, else by
+// `odometry_delta`, with the tracking then running alongside.
+void RbpfGridSlam::TrackAndMove(const LaserScan& scan, int scan_index,
+                                const Pose2& odometry_delta) {
+  if (params_.track_between_updates && params_.motion_from_tracking) {
+    FinishTracking();
+    const ScanRecord& previous = scans_[scan_index - 1];
+    MoveAndWeigh(scan, previous.since_update.Compose(previous.odometry.Between(scan.odometry)));
+    return;
+  }
+  // The particles write only their poses and weights while they move, never their maps.
+  const Particle& best = particles_[BestParticle()];
+  tbb::task_group tracking;
+  tracking.run([this, &map = best.map, anchor = best.pose] { TrackPending(map, anchor); });
+  MoveAndWeigh(scan, odometry_delta);
+  tracking.wait();
+}
+
+// SPEC S4 (GMapping's proposal): sample the motion, refine it by matching the scan
 // against the particle's own map, weigh by the scan likelihood at the refined pose.
 void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
   const ScanPoints points = PrepareScan(scan, params_.matcher);

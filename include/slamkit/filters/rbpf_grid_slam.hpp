@@ -70,9 +70,10 @@ struct RbpfGridSlamParams {
 };
 
 // Rao-Blackwellised particle filter on occupancy grids (GMapping-like; SPEC S4): each particle
-// holds a pose, a log-weight, its own map and its path. The proposal is the odometry sample
-// refined by scan matching against the particle's map; weights come from the scan likelihood at
-// the refined pose; resampling is systematic and adaptive on N_eff. Maps share unchanged tiles
+// holds a pose, a log-weight, its own map and its path. The proposal is a motion sample (the
+// tracked motion or odometry) refined by scan matching against the particle's map, then drawn
+// from the Gaussian fitted around the match; weights come from the scan likelihood there;
+// resampling is systematic and adaptive on N_eff. Maps share unchanged tiles
 // (copy-on-write), so resampling copies are cheap. Particles are processed in parallel; each
 // draws from its own Rng stream, so a seed fixes the result whatever the thread count.
 class RbpfGridSlam {
@@ -101,6 +102,7 @@ class RbpfGridSlam {
   void MoveAndWeigh(const LaserScan& scan, const Pose2& delta);
   void ResampleIfNeeded();
   void InsertIntoMaps(const LaserScan& scan, int scan_index);
+  void TrackAndMove(const LaserScan& scan, int scan_index, const Pose2& odometry_delta);
   void TrackPending(const OccupancyGrid& map, const Pose2& anchor);
   void FinishTracking();
 
