@@ -7,10 +7,9 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "grid_options.hpp"
+#include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/eval/grid_run.hpp"
-#include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/writers.hpp"
 
 namespace slamkit::app {
@@ -51,36 +50,19 @@ int RunGridCommand(const GridOptions& o) {
   }
 
   const std::filesystem::path dir(o.out);
-  std::filesystem::create_directories(dir);
-  WritePoseText(dir / "trajectory.txt", result.trajectory);
-  WriteTumTrajectory(dir / "trajectory.tum", result.trajectory);
-  WriteOccupancyGridPgm(dir / "map.pgm", result.map);
-  WriteOccupancyGridPng(dir / "map.png", result.map);
+  WriteGridOutputs(dir, result);
   WriteJson(dir / "metrics.json",
             GridMetrics(result, o.params, errors ? &*errors : nullptr,
                         reference ? &*reference : nullptr, PeakRssMib()));
 
-  fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", o.log, result.scans,
-             result.updates, result.resamples, o.params.particles);
-  fmt::print("  {:<28}{:>12.2f}\n", "wall time [s]", result.wall_time_s);
-  fmt::print("  {:<28}{:>12.1f}\n", "scans per second", result.scans / result.wall_time_s);
-  fmt::print("  {:<28}{:>12.1f}\n", "peak memory [MiB]", PeakRssMib());
+  PrintGridRun(o.log, result, o.params.particles);
   if (errors) {
     fmt::print("  {:<28}{:>12}\n", "relations: translation [m]",
                fmt::format("{:.4f} ± {:.4f}", errors->trans_mean_m, errors->trans_std_m));
     fmt::print("  {:<28}{:>12}\n", "relations: rotation [deg]",
                fmt::format("{:.3f} ± {:.3f}", errors->rot_mean_deg, errors->rot_std_deg));
   }
-  if (reference) {
-    fmt::print("  {:<28}{:>12}\n", "ATE vs log poses [m]",
-               fmt::format("{:.4f} rms, {:.4f} max", reference->ate.rmse_m, reference->ate.max_m));
-    fmt::print("  {:<28}{:>12}\n", "RPE translation [m]",
-               fmt::format("{:.4f} ± {:.4f}", reference->rpe.trans_mean_m,
-                           reference->rpe.trans_std_m));
-    fmt::print("  {:<28}{:>12}\n", "RPE rotation [deg]",
-               fmt::format("{:.3f} ± {:.3f}", reference->rpe.rot_mean_deg,
-                           reference->rpe.rot_std_deg));
-  }
+  if (reference) PrintComparison("log poses", *reference);
   fmt::print("wrote {}\n", dir.string());
   return 0;
 }

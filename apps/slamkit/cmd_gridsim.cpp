@@ -13,12 +13,11 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "grid_options.hpp"
+#include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/eval/grid_sim.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"
-#include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/waypoints_reader.hpp"
 #include "slamkit/io/writers.hpp"
@@ -68,23 +67,11 @@ std::pair<FloorPlan, RouteParams> PlanAndRoute(const GridSimOptions& o) {
 }
 
 void PrintSummary(const GridSimOptions& o, const GridSimResult& r) {
-  const GridRunResult& s = r.slam;
-  fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", o.plan, s.scans, s.updates,
-             s.resamples, o.params.particles);
-  fmt::print("  {:<28}{:>12.2f}\n", "wall time [s]", s.wall_time_s);
-  fmt::print("  {:<28}{:>12.1f}\n", "scans per second", s.scans / s.wall_time_s);
-  fmt::print("  {:<28}{:>12.1f}\n", "peak memory [MiB]", PeakRssMib());
-  fmt::print("  {:<28}{:>12}\n", "ATE vs truth [m]",
-             fmt::format("{:.4f} rms, {:.4f} max", r.vs_truth.ate.rmse_m, r.vs_truth.ate.max_m));
+  PrintGridRun(o.plan, r.slam, o.params.particles);
+  PrintComparison("truth", r.vs_truth);
   fmt::print("  {:<28}{:>12}\n", "odometry ATE vs truth [m]",
              fmt::format("{:.4f} rms, {:.4f} max", r.odometry_vs_truth.ate.rmse_m,
                          r.odometry_vs_truth.ate.max_m));
-  fmt::print("  {:<28}{:>12}\n", "RPE translation [m]",
-             fmt::format("{:.4f} ± {:.4f}", r.vs_truth.rpe.trans_mean_m,
-                         r.vs_truth.rpe.trans_std_m));
-  fmt::print("  {:<28}{:>12}\n", "RPE rotation [deg]",
-             fmt::format("{:.3f} ± {:.3f}", r.vs_truth.rpe.rot_mean_deg,
-                         r.vs_truth.rpe.rot_std_deg));
 }
 
 int RunGridSimCommand(GridSimOptions o) {
@@ -108,12 +95,8 @@ int RunGridSimCommand(GridSimOptions o) {
   }
 
   const std::filesystem::path dir(o.out);
-  std::filesystem::create_directories(dir);
-  WritePoseText(dir / "trajectory.txt", result.slam.trajectory);
-  WriteTumTrajectory(dir / "trajectory.tum", result.slam.trajectory);
+  WriteGridOutputs(dir, result.slam);
   WriteTumTrajectory(dir / "truth.tum", result.truth);
-  WriteOccupancyGridPgm(dir / "map.pgm", result.slam.map);
-  WriteOccupancyGridPng(dir / "map.png", result.slam.map);
   WriteJson(dir / "metrics.json",
             GridSimMetrics(result, o.sim, o.sim_seed, o.params, PeakRssMib()));
   PrintSummary(o, result);

@@ -1,4 +1,9 @@
-#include "grid_options.hpp"
+#include "grid_common.hpp"
+
+#include <fmt/format.h>
+
+#include "slamkit/io/grid_writers.hpp"
+#include "slamkit/io/writers.hpp"
 
 namespace slamkit::app {
 
@@ -35,6 +40,31 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
 void FinishGridFilterOptions(RbpfGridSlamParams& p) {
   p.matcher.usable_range_m = p.insertion.usable_range_m;
   p.tracking.usable_range_m = p.insertion.usable_range_m;
+}
+
+void WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result) {
+  std::filesystem::create_directories(dir);
+  WritePoseText(dir / "trajectory.txt", result.trajectory);
+  WriteTumTrajectory(dir / "trajectory.tum", result.trajectory);
+  WriteOccupancyGridPgm(dir / "map.pgm", result.map);
+  WriteOccupancyGridPng(dir / "map.png", result.map);
+}
+
+void PrintGridRun(const std::string& source, const GridRunResult& result, int particles) {
+  fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", source, result.scans,
+             result.updates, result.resamples, particles);
+  fmt::print("  {:<28}{:>12.2f}\n", "wall time [s]", result.wall_time_s);
+  fmt::print("  {:<28}{:>12.1f}\n", "scans per second", result.scans / result.wall_time_s);
+  fmt::print("  {:<28}{:>12.1f}\n", "peak memory [MiB]", PeakRssMib());
+}
+
+void PrintComparison(const std::string& against, const ReferenceComparison& c) {
+  fmt::print("  {:<28}{:>12}\n", fmt::format("ATE vs {} [m]", against),
+             fmt::format("{:.4f} rms, {:.4f} max", c.ate.rmse_m, c.ate.max_m));
+  fmt::print("  {:<28}{:>12}\n", "RPE translation [m]",
+             fmt::format("{:.4f} ± {:.4f}", c.rpe.trans_mean_m, c.rpe.trans_std_m));
+  fmt::print("  {:<28}{:>12}\n", "RPE rotation [deg]",
+             fmt::format("{:.3f} ± {:.3f}", c.rpe.rot_mean_deg, c.rpe.rot_std_deg));
 }
 
 }  // namespace slamkit::app
