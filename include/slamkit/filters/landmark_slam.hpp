@@ -1,0 +1,41 @@
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/filters/data_association.hpp"
+#include "slamkit/maps/landmark_map.hpp"
+#include "slamkit/models/motion_model.hpp"
+#include "slamkit/models/point_sensor.hpp"
+
+namespace slamkit {
+
+// What every point-landmark SLAM filter offers (EKF-SLAM today; FastSLAM and the cooperative
+// EKF next), so that one harness (Monte Carlo runs, NEES/ANEES, RMSE, association scoring, map
+// error) runs on any of them without knowing how it estimates.
+class LandmarkSlamFilter {
+ public:
+  virtual ~LandmarkSlamFilter() = default;
+
+  // Forgets the map and starts from `pose` with covariance `pose_cov`.
+  virtual void Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) = 0;
+  // Moves the pose with control `u` over `dt_s`; `control_noise` overrides the motion model's.
+  virtual void Predict(const Control& u, double dt_s,
+                       const ControlCovariance* control_noise = nullptr) = 0;
+  // Takes one scan's observations; returns one decision per observation, in input order. A
+  // decision's `landmark` indexes Map().landmarks and keeps naming the same landmark for the
+  // filter's life, so a harness can join decisions with the truth after the run.
+  virtual std::vector<AssociationDecision> Update(
+      std::span<const PointObservation> observations) = 0;
+
+  virtual Pose2 PoseEstimate() const = 0;
+  virtual Eigen::Matrix3d PoseCovariance() const = 0;
+  virtual int NumLandmarks() const = 0;
+  // The estimated landmarks with their marginal covariances.
+  virtual LandmarkMap Map() const = 0;
+};
+
+}  // namespace slamkit
