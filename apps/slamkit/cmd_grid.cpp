@@ -9,7 +9,8 @@
 #include "commands.hpp"
 #include "grid_common.hpp"
 #include "progress.hpp"
-#include "slamkit/eval/grid_run.hpp"
+#include "slamkit/runners/grid_run.hpp"
+#include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/writers.hpp"
 
 namespace slamkit::app {

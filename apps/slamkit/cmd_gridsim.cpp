@@ -15,7 +15,7 @@
 #include "commands.hpp"
 #include "grid_common.hpp"
 #include "progress.hpp"
-#include "slamkit/eval/grid_sim.hpp"
+#include "slamkit/runners/grid_sim.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"
 #include "slamkit/io/map_reader.hpp"
@@ -59,7 +59,7 @@ std::pair<FloorPlan, RouteParams> PlanAndRoute(const GridSimOptions& o) {
   }
   FloorPlan plan = maze                     ? MakeSquareMaze()
                    : IsMapServerMap(o.plan) ? FloorPlanFromOccupancy(ReadOccupancyImage(o.plan))
-                                            : ReadFloorPlanFile(o.plan);
+                                            : FloorPlan{ReadFloorPlanFile(o.plan)};
   // A given route turns at its waypoints as tightly as the maze route does.
   RouteParams route = MazeRoute({}, o.sim.route.loops);
   if (!o.waypoints.empty()) route.waypoints_m = ReadWaypoints(o.waypoints);

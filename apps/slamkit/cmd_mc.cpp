@@ -8,8 +8,8 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "slamkit/core/angle.hpp"
-#include "slamkit/eval/outputs.hpp"
-#include "slamkit/io/scenario_config.hpp"
+#include "slamkit/runners/outputs.hpp"
+#include "slamkit/runners/scenario_config.hpp"
 #include "slamkit/report/figures.hpp"
 
 namespace slamkit::app {
@@ -26,11 +26,12 @@ struct McOptions {
   bool known_association = false;
 };
 
-void PrintSummary(const ScenarioParams& scenario, const MonteCarloResult& mc) {
+void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
+  const ScenarioParams& scenario = config.scenario;
   const AssociationScore& a = mc.association;
   fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association\n", scenario.name,
              mc.runs.size(), mc.t_s.size(), mc.world.landmarks.size(),
-             scenario.ekf.known_association ? "known" : "nearest-neighbour");
+             config.ekf.known_association ? "known" : "nearest-neighbour");
   fmt::print("  {:<28}{:>14}\n", "position RMSE [m]", fmt::format("{:.4f}", mc.rmse.position_m));
   fmt::print("  {:<28}{:>14}\n", "heading RMSE [deg]",
              fmt::format("{:.4f}", RadToDeg(mc.rmse.heading_rad)));
@@ -39,7 +40,7 @@ void PrintSummary(const ScenarioParams& scenario, const MonteCarloResult& mc) {
              100.0 * mc.anees_fraction_in_band);
   fmt::print("  {:<28}{:>14}\n", "landmarks mapped (mean)",
              fmt::format("{:.1f}", mc.landmarks_mapped_mean));
-  if (!scenario.ekf.known_association) {
+  if (!config.ekf.known_association) {
     fmt::print("  {:<28}{:>14}\n", "association precision", fmt::format("{:.4f}", a.Precision()));
     fmt::print("  {:<28}{:>14}\n", "association recall", fmt::format("{:.4f}", a.Recall()));
   }
@@ -71,9 +72,9 @@ void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenar
 }
 
 int RunMonteCarloCommand(const McOptions& options) {
-  ScenarioParams scenario = LoadScenario(options.config);
-  if (options.known_association) scenario.ekf.known_association = true;
-  if (options.unknown_association) scenario.ekf.known_association = false;
+  ScenarioConfig config = LoadScenario(options.config);
+  if (options.known_association) config.ekf.known_association = true;
+  if (options.unknown_association) config.ekf.known_association = false;
   MonteCarloParams params;
   params.runs = options.runs;
   params.seed = options.seed;
@@ -83,13 +84,13 @@ int RunMonteCarloCommand(const McOptions& options) {
     (void)total;
     progress->Update(done);
   };
-  const MonteCarloResult mc = RunMonteCarlo(scenario, params);
+  const MonteCarloResult mc = RunMonteCarlo(config, params);
   const std::filesystem::path dir(options.out);
   std::filesystem::create_directories(dir);
   // Figures first: metrics.json is written last, so its presence means the run completed.
-  if (!options.no_figures) WriteFigures(dir, scenario, mc);
-  WriteMonteCarloOutputs(dir, MonteCarloMetrics(scenario, params, mc), mc);
-  PrintSummary(scenario, mc);
+  if (!options.no_figures) WriteFigures(dir, config.scenario, mc);
+  WriteMonteCarloOutputs(dir, MonteCarloMetrics(config, params, mc), mc);
+  PrintSummary(config, mc);
   fmt::print("wrote {}\n", dir.string());
   return 0;
 }

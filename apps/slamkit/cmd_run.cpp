@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "slamkit/eval/outputs.hpp"
+#include "slamkit/runners/outputs.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/report/figures.hpp"
 

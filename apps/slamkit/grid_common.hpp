@@ -5,7 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "slamkit/eval/grid_run.hpp"
+#include "slamkit/runners/grid_run.hpp"
 #include "slamkit/filters/rbpf_grid_slam.hpp"
 
 namespace slamkit::app {

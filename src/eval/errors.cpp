@@ -22,23 +22,23 @@ PoseRmse ComputePoseRmse(std::span<const Eigen::Vector3d> errors) {
   return {std::sqrt(pos / n), std::sqrt(head / n)};
 }
 
-void AssociationScorer::Add(LandmarkId true_id, const AssociationDecision& decision,
+void AssociationScorer::Add(LandmarkId true_id, AssociationOutcome outcome,
                             LandmarkId matched_source) {
   ++score_.sightings;
   const bool in_map = std::binary_search(mapped_ids_.begin(), mapped_ids_.end(), true_id);
   if (in_map) ++score_.matchable;
-  switch (decision.kind) {
-    case AssociationDecision::Kind::kMatched:
+  switch (outcome) {
+    case AssociationOutcome::kMatched:
       ++score_.matched;
       if (matched_source == true_id) ++score_.correct;
       break;
-    case AssociationDecision::Kind::kNew:
+    case AssociationOutcome::kNew:
       ++score_.created;
       if (!in_map) mapped_ids_.insert(std::upper_bound(mapped_ids_.begin(), mapped_ids_.end(),
                                                        true_id),
                                       true_id);
       break;
-    case AssociationDecision::Kind::kDropped:
+    case AssociationOutcome::kDropped:
       ++score_.dropped;
       break;
   }

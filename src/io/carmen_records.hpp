@@ -10,7 +10,7 @@
 
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/core/laser_scan.hpp"
 #include "text_records.hpp"
 
 namespace slamkit::carmen {

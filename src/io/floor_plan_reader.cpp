@@ -71,7 +71,7 @@ void ParsePolygon(const std::string& where, const text::Fields& fields,
 
 }  // namespace
 
-FloorPlan ReadFloorPlanFile(const std::filesystem::path& path) {
+Walls ReadFloorPlanFile(const std::filesystem::path& path) {
   text::LineReader reader(path);
   std::vector<WallSegment> walls;
   std::vector<std::string_view> tokens;
@@ -91,7 +91,7 @@ FloorPlan ReadFloorPlanFile(const std::filesystem::path& path) {
     throw InputError(fmt::format("{}: no walls: expected `x1 y1 x2 y2` or `poly x1 y1 x2 y2 x3 y3 "
                                  "...` lines, in metres", path.string()));
   }
-  return FloorPlan{std::move(walls)};
+  return walls;
 }
 
 }  // namespace slamkit

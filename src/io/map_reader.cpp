@@ -20,14 +20,14 @@
 #include <Eigen/Core>
 
 #include "slamkit/io/error.hpp"
-#include "yaml_fields.hpp"
+#include "slamkit/io/config_section.hpp"
 
 namespace slamkit {
 namespace {
 
-using internal::Bound;
-using internal::Describe;
-using internal::Section;
+using config::Bound;
+using config::Describe;
+using config::Section;
 
 // The image part of a map, as the PGM gives it.
 struct PgmImage {
@@ -164,25 +164,14 @@ bool ReadNegate(const Section& s) {
     s.Read(key, &threshold, Bound::kNonNegative);
     if (threshold > 1.0) s.Fail(key, fmt::format("must be in [0, 1], got {}", threshold));
   }
-  internal::ReadChoice(s, "mode", {"trinary", "scale"}, 0);
+  config::ReadChoice(s, "mode", {"trinary", "scale"}, 0);
   return negate == 1;
-}
-
-YAML::Node LoadYaml(const std::filesystem::path& path) {
-  try {
-    return YAML::LoadFile(path.string());
-  } catch (const YAML::BadFile&) {
-    throw InputError(path.string() + ": cannot open file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(
-        fmt::format("{}:{}: YAML syntax error: {}", path.string(), e.mark.line + 1, e.msg));
-  }
 }
 
 }  // namespace
 
 OccupancyImage ReadOccupancyImage(const std::filesystem::path& yaml_path) {
-  const Section s(LoadYaml(yaml_path), yaml_path.string(), "",
+  const Section s(config::LoadYamlFile(yaml_path), yaml_path.string(), "",
                   {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh",
                    "mode"});
   RequireKeys(s, {"image", "resolution", "origin"});

@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/error.hpp"
 #include "text_records.hpp"
 

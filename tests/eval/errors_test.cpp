@@ -20,14 +20,14 @@ TEST(PoseRmse, SeparatesPositionAndHeading) {
 }
 
 TEST(AssociationScorer, CountsPrecisionAndRecall) {
-  using Kind = AssociationDecision::Kind;
+  using Kind = AssociationOutcome;
   AssociationScorer s;
-  s.Add(7, {Kind::kNew, 0, 99.0}, kNoLandmark);      // creates 7
-  s.Add(8, {Kind::kNew, 1, 99.0}, kNoLandmark);      // creates 8
-  s.Add(7, {Kind::kMatched, 0, 1.0}, 7);             // correct
-  s.Add(8, {Kind::kMatched, 0, 1.0}, 7);             // wrong landmark
-  s.Add(7, {Kind::kDropped, -1, 10.0}, kNoLandmark);  // matchable, missed
-  s.Add(9, {Kind::kMatched, 1, 2.0}, 8);             // 9 not in map: a false match
+  s.Add(7, Kind::kNew, kNoLandmark);      // creates 7
+  s.Add(8, Kind::kNew, kNoLandmark);      // creates 8
+  s.Add(7, Kind::kMatched, 7);            // correct
+  s.Add(8, Kind::kMatched, 7);            // wrong landmark
+  s.Add(7, Kind::kDropped, kNoLandmark);  // matchable, missed
+  s.Add(9, Kind::kMatched, 8);            // 9 not in map: a false match
   const AssociationScore& a = s.score();
   EXPECT_EQ(a.sightings, 6);
   EXPECT_EQ(a.matched, 3);

@@ -27,19 +27,19 @@ TEST_F(FloorPlanReader, ReadsWallsAndClosesPolygons) {
                               "poly 0 0  4 0\t4 4 0 4   # counter-clockwise\r\n"
                               "\n"
                               "  1.5 -2 1.5 3e0\n");
-  const FloorPlan plan = ReadFloorPlanFile(path);
-  ASSERT_EQ(plan.walls.size(), 5u);
-  ExpectWall(plan.walls[0], {0, 0}, {4, 0});
-  ExpectWall(plan.walls[1], {4, 0}, {4, 4});
-  ExpectWall(plan.walls[2], {4, 4}, {0, 4});
-  ExpectWall(plan.walls[3], {0, 4}, {0, 0});  // the last point joins the first
-  ExpectWall(plan.walls[4], {1.5, -2}, {1.5, 3});
+  const Walls walls = ReadFloorPlanFile(path);
+  ASSERT_EQ(walls.size(), 5u);
+  ExpectWall(walls[0], {0, 0}, {4, 0});
+  ExpectWall(walls[1], {4, 0}, {4, 4});
+  ExpectWall(walls[2], {4, 4}, {0, 4});
+  ExpectWall(walls[3], {0, 4}, {0, 0});  // the last point joins the first
+  ExpectWall(walls[4], {1.5, -2}, {1.5, 3});
 }
 
 TEST_F(FloorPlanReader, ATriangleIsTheSmallestPolygon) {
-  const FloorPlan plan = ReadFloorPlanFile(WriteFile("plan.txt", "poly 0 0 1 0 0 1\n"));
-  ASSERT_EQ(plan.walls.size(), 3u);
-  ExpectWall(plan.walls[2], {0, 1}, {0, 0});
+  const Walls walls = ReadFloorPlanFile(WriteFile("plan.txt", "poly 0 0 1 0 0 1\n"));
+  ASSERT_EQ(walls.size(), 3u);
+  ExpectWall(walls[2], {0, 1}, {0, 0});
 }
 
 TEST_F(FloorPlanReader, ErrorsNameTheFileLineAndField) {

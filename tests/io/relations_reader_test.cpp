@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/error.hpp"
 
 #include "common/input_error.hpp"

@@ -6,7 +6,6 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/ids.hpp"
-#include "slamkit/filters/data_association.hpp"
 
 namespace slamkit {
 
@@ -34,12 +33,15 @@ struct AssociationScore {
   double Recall() const { return matchable > 0 ? double(correct) / matchable : 1.0; }
 };
 
+// What a filter did with one sighting (the filters' AssociationDecision::Kind, seen from here).
+enum class AssociationOutcome { kMatched, kNew, kDropped };
+
 // Accumulates AssociationScore one decision at a time, in filter order.
 class AssociationScorer {
  public:
   // `true_id` is the sighting's true landmark; `matched_source` the true id of the landmark it
-  // was matched to (ignored unless the decision is a match).
-  void Add(LandmarkId true_id, const AssociationDecision& decision, LandmarkId matched_source);
+  // was matched to (ignored unless the outcome is a match).
+  void Add(LandmarkId true_id, AssociationOutcome outcome, LandmarkId matched_source);
   const AssociationScore& score() const { return score_; }
 
  private:

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/core/relation.hpp"
 
 namespace slamkit {
 

@@ -8,7 +8,7 @@
 #include "slamkit/filters/gaussian_proposal.hpp"
 #include "slamkit/filters/scan_matcher.hpp"
 #include "slamkit/maps/occupancy_grid.hpp"
-#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/models/odometry_sampling.hpp"
 
 namespace slamkit {

@@ -6,7 +6,7 @@
 
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/maps/occupancy_grid.hpp"
-#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/core/laser_scan.hpp"
 
 namespace slamkit {
 

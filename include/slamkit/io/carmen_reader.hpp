@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/core/laser_scan.hpp"
 
 namespace slamkit {
 
@@ -62,18 +62,5 @@ struct CarmenLog {
 // along the shorter arc; the first or last record's pose outside their span. Without ODOM
 // records, the scan record's odometry fields.
 CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptions& options = {});
-
-// One relation of Kümmerle et al. 2009: the pose at t2_s expressed in the frame of the pose at
-// t1_s.
-struct PoseRelation {
-  double t1_s = 0.0;
-  double t2_s = 0.0;
-  Pose2 delta;
-};
-
-// Reads `t1 t2 x y z roll pitch yaw` lines (z, roll and pitch must be 0 for a 2D log within
-// 1e-6), delta = (x, y, yaw); blank and `#` lines are ignored, gzip is read transparently. Throws
-// InputError naming the file, line and field (a wrong field count, a non-number, NaN/inf).
-std::vector<PoseRelation> ReadRelations(const std::filesystem::path& path);
 
 }  // namespace slamkit

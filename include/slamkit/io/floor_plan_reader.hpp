@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "slamkit/sim/floor_plan.hpp"
+#include "slamkit/maps/walls.hpp"
 
 namespace slamkit {
 
@@ -16,6 +16,6 @@ namespace slamkit {
 // Throws InputError naming the file, the line and the field (`x2`, `poly` `y3`, ...) for a wrong
 // count of numbers, a non-number, NaN or inf, a zero-length wall (a polygon's consecutive points
 // too), a polygon of fewer than 3 points; and naming the file when it has no walls at all.
-FloorPlan ReadFloorPlanFile(const std::filesystem::path& path);
+Walls ReadFloorPlanFile(const std::filesystem::path& path);
 
 }  // namespace slamkit

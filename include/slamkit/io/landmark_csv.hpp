@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "slamkit/sim/world.hpp"
+#include "slamkit/core/landmark_world.hpp"
 
 namespace slamkit {
 

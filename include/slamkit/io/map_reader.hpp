@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "slamkit/sim/floor_plan.hpp"
+#include "slamkit/maps/occupancy_image.hpp"
 
 namespace slamkit {
 

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/pose2.hpp"
-#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/core/laser_scan.hpp"
 
 namespace slamkit {
 

@@ -8,7 +8,7 @@
 
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/maps/landmark_map.hpp"
-#include "slamkit/sim/world.hpp"
+#include "slamkit/core/landmark_world.hpp"
 
 namespace slamkit {
 

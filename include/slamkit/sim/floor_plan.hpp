@@ -9,10 +9,10 @@
 
 #include <Eigen/Core>
 
-namespace slamkit {
+#include "slamkit/maps/occupancy_image.hpp"
+#include "slamkit/maps/walls.hpp"
 
-// A wall from one end point to the other, in metres.
-using WallSegment = std::pair<Eigen::Vector2d, Eigen::Vector2d>;
+namespace slamkit {
 
 class WallGrid;  // the walls bucketed into square cells (floor_plan.cpp)
 
@@ -78,15 +78,6 @@ struct SquareMazeParams {
 };
 
 FloorPlan MakeSquareMaze(const SquareMazeParams& params = {});
-
-// An 8-bit map image, such as a map_server PGM (see io/grid_writers.hpp).
-struct OccupancyImage {
-  std::vector<std::uint8_t> pixels;  // row-major, top row (largest y) first
-  int width = 0;
-  int height = 0;
-  double resolution_m = 0.05;        // side of a pixel
-  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  // lower-left corner of the lower-left pixel
-};
 
 // The walls of an occupancy image: every pixel edge between an occupied pixel and a free one (or
 // the outside of the image), with collinear consecutive edges merged into one segment. A pixel is

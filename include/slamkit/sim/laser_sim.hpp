@@ -6,7 +6,7 @@
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/rng.hpp"
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/models/laser_scan.hpp"
+#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/sim/controller.hpp"
 #include "slamkit/sim/floor_plan.hpp"
 

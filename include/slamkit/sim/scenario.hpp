@@ -7,7 +7,6 @@
 
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/models/point_sensor.hpp"
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/models/vehicle.hpp"
@@ -16,8 +15,8 @@
 
 namespace slamkit {
 
-// Everything an EKF-SLAM simulation experiment needs: world, vehicle, route, sensor and filter.
-// configs/*.yaml files map onto this one to one (io/scenario_config.hpp).
+// Everything a landmark SLAM simulation needs: world, vehicle, route and sensor (the filter's
+// params come beside it: runners/scenario_config.hpp).
 struct ScenarioParams {
   std::string name = "scenario";
   double dt_s = 0.025;
@@ -29,7 +28,6 @@ struct ScenarioParams {
   Pose2 initial_pose;
   RangeBearingParams sensor;
   int sensor_period_steps = 8;    // observe every this many steps
-  EkfSlamParams ekf;
 };
 
 // One simulated time step: the true pose after it, the noisy control that led there and what the

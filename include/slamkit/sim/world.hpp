@@ -5,20 +5,10 @@
 
 #include <Eigen/Core>
 
-#include "slamkit/core/ids.hpp"
+#include "slamkit/core/landmark_world.hpp"
 #include "slamkit/core/rng.hpp"
 
 namespace slamkit {
-
-struct Landmark {
-  LandmarkId id = kNoLandmark;
-  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
-};
-
-// A world of point landmarks with unique ids.
-struct LandmarkWorld {
-  std::vector<Landmark> landmarks;
-};
 
 // Landmarks uniformly distributed over an axis-aligned rectangle.
 struct UniformWorldParams {

@@ -4,15 +4,15 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slamkit/eval/isam_run.hpp"
-#include "slamkit/eval/monte_carlo.hpp"
+#include "slamkit/runners/isam_run.hpp"
+#include "slamkit/runners/monte_carlo.hpp"
 
 namespace slamkit {
 
 // metrics.json of a Monte Carlo experiment (the output contract in README.md): summary keys,
 // then the same per run under `per_run`. Timing keys (`step_time_*`) are the only ones that vary
 // between two runs with the same seed.
-nlohmann::json MonteCarloMetrics(const ScenarioParams& scenario, const MonteCarloParams& params,
+nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
                                   const MonteCarloResult& result);
 
 // Writes DIR/metrics.json, DIR/world.csv, DIR/consistency.csv (t, ANEES, RMSEs per step) and

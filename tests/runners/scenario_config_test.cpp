@@ -1,4 +1,4 @@
-#include "slamkit/io/scenario_config.hpp"
+#include "slamkit/runners/scenario_config.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,7 +23,7 @@ using testing::Contains;
 const fs::path kConfigs = fs::path(SLAMKIT_SOURCE_DIR) / "configs";
 constexpr const char* kRoute = "route: {waypoints_m: [[0, 0], [10, 0]]}\n";
 
-class ScenarioConfig : public testing::TempDirTest {
+class ScenarioConfigFile : public testing::TempDirTest {
  protected:
 
   fs::path Write(const std::string& name, const std::string& text) const {
@@ -35,7 +35,7 @@ class ScenarioConfig : public testing::TempDirTest {
   }
 };
 
-TEST_F(ScenarioConfig, LoadsEveryShippedConfig) {
+TEST_F(ScenarioConfigFile, LoadsEveryShippedConfig) {
   int loaded = 0;
   for (const auto& entry : fs::directory_iterator(kConfigs)) {
     if (entry.path().extension() != ".yaml") continue;
@@ -69,14 +69,15 @@ ekf: {known_association: true, gate_chi2: 5.99, new_landmark_chi2: 20,
       association_margin_m: 2, initial_landmark_capacity: 16}
 )";
 
-ScenarioParams LoadEveryKey(const fs::path& dir) {
+ScenarioConfig LoadEveryKey(const fs::path& dir) {
   std::ofstream(dir / "trees.csv") << "id,x_m,y_m\n4,1,2\n9,3,4\n";
   std::ofstream(dir / "all.yaml") << kEveryKey;
   return LoadScenario(dir / "all.yaml");
 }
 
-TEST_F(ScenarioConfig, EveryTopLevelAndWorldKeyReachesItsField) {
-  const ScenarioParams p = LoadEveryKey(dir_);
+TEST_F(ScenarioConfigFile, EveryTopLevelAndWorldKeyReachesItsField) {
+  const ScenarioConfig c = LoadEveryKey(dir_);
+  const ScenarioParams& p = c.scenario;
   EXPECT_EQ(p.name, "everything");
   EXPECT_EQ(p.dt_s, 0.5);
   EXPECT_EQ(p.max_steps, 77);
@@ -96,8 +97,9 @@ TEST_F(ScenarioConfig, EveryTopLevelAndWorldKeyReachesItsField) {
   EXPECT_EQ(p.world.given.landmarks[1].position_m, Eigen::Vector2d(3, 4));
 }
 
-TEST_F(ScenarioConfig, EveryVehicleControllerAndRouteKeyReachesItsField) {
-  const ScenarioParams p = LoadEveryKey(dir_);
+TEST_F(ScenarioConfigFile, EveryVehicleControllerAndRouteKeyReachesItsField) {
+  const ScenarioConfig c = LoadEveryKey(dir_);
+  const ScenarioParams& p = c.scenario;
   EXPECT_EQ(p.vehicle.kind, MotionKind::kUnicycle);
   EXPECT_EQ(p.vehicle.car_like.wheelbase_m, 2.5);
   EXPECT_EQ(p.vehicle.car_like.sigma_v_mps, 0.7);
@@ -120,34 +122,37 @@ TEST_F(ScenarioConfig, EveryVehicleControllerAndRouteKeyReachesItsField) {
   EXPECT_DOUBLE_EQ(p.initial_pose.theta(), DegToRad(90));
 }
 
-TEST_F(ScenarioConfig, EverySensorAndEkfKeyReachesItsField) {
-  const ScenarioParams p = LoadEveryKey(dir_);
+TEST_F(ScenarioConfigFile, EverySensorAndEkfKeyReachesItsField) {
+  const ScenarioConfig c = LoadEveryKey(dir_);
+  const ScenarioParams& p = c.scenario;
   EXPECT_EQ(p.sensor.max_range_m, 12.0);
   EXPECT_EQ(p.sensor.min_range_m, 0.5);
   EXPECT_DOUBLE_EQ(p.sensor.fov_rad, DegToRad(120));
   EXPECT_EQ(p.sensor.sigma_range_m, 0.2);
   EXPECT_DOUBLE_EQ(p.sensor.sigma_bearing_rad, DegToRad(2));
   EXPECT_EQ(p.sensor_period_steps, 3);
-  EXPECT_TRUE(p.ekf.known_association);
-  EXPECT_EQ(p.ekf.association.gate_chi2, 5.99);
-  EXPECT_EQ(p.ekf.association.new_landmark_chi2, 20.0);
-  EXPECT_EQ(p.ekf.association_margin_m, 2.0);
-  EXPECT_EQ(p.ekf.initial_landmark_capacity, 16);
+  EXPECT_TRUE(c.ekf.known_association);
+  EXPECT_EQ(c.ekf.association.gate_chi2, 5.99);
+  EXPECT_EQ(c.ekf.association.new_landmark_chi2, 20.0);
+  EXPECT_EQ(c.ekf.association_margin_m, 2.0);
+  EXPECT_EQ(c.ekf.initial_landmark_capacity, 16);
 }
 
-TEST_F(ScenarioConfig, AbsentKeysKeepTheDefaults) {
-  const ScenarioParams p = LoadScenario(Write("min.yaml", kRoute));
-  const ScenarioParams d;
+TEST_F(ScenarioConfigFile, AbsentKeysKeepTheDefaults) {
+  const ScenarioConfig c = LoadScenario(Write("min.yaml", kRoute));
+  const ScenarioParams& p = c.scenario;
+  const ScenarioConfig dc;
+  const ScenarioParams& d = dc.scenario;
   EXPECT_EQ(p.dt_s, d.dt_s);
   EXPECT_EQ(p.max_steps, d.max_steps);
   EXPECT_EQ(p.vehicle.kind, d.vehicle.kind);
   EXPECT_EQ(p.sensor.fov_rad, d.sensor.fov_rad);
   EXPECT_EQ(p.sensor_period_steps, d.sensor_period_steps);
-  EXPECT_EQ(p.ekf.association.gate_chi2, d.ekf.association.gate_chi2);
+  EXPECT_EQ(c.ekf.association.gate_chi2, dc.ekf.association.gate_chi2);
   EXPECT_EQ(p.route.loops, d.route.loops);
 }
 
-TEST_F(ScenarioConfig, UnknownKeyNamesFileLineAndKey) {
+TEST_F(ScenarioConfigFile, UnknownKeyNamesFileLineAndKey) {
   const std::string root = ErrorOf(std::string("dt_s: 0.1\n") + kRoute + "sensr: {}\n");
   EXPECT_TRUE(Contains(root, "bad.yaml:3: unknown key 'sensr' in section 'root' (known: name,"));
   const std::string nested = ErrorOf(std::string(kRoute) + "sensor:\n  fov_deg: 90\n  rnage: 3\n");
@@ -161,7 +166,7 @@ TEST_F(ScenarioConfig, UnknownKeyNamesFileLineAndKey) {
       Contains(cluster, "bad.yaml:5: unknown key 'centre_m' in section 'world.clusters[1]'"));
 }
 
-TEST_F(ScenarioConfig, WrongTypeNamesFileLineAndKey) {
+TEST_F(ScenarioConfigFile, WrongTypeNamesFileLineAndKey) {
   const std::string body = std::string("name: x\n") + kRoute;
   EXPECT_TRUE(Contains(ErrorOf(body + "dt_s: abc\n"),
                        "bad.yaml:3: key 'dt_s': expected a number, got 'abc'"));
@@ -181,7 +186,7 @@ TEST_F(ScenarioConfig, WrongTypeNamesFileLineAndKey) {
                        "bad.yaml:1: key 'route.waypoints_m': expected a point [x, y]"));
 }
 
-TEST_F(ScenarioConfig, BadValuesNameFileLineAndKey) {
+TEST_F(ScenarioConfigFile, BadValuesNameFileLineAndKey) {
   const std::string body = std::string(kRoute);
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"dt_s: 0\n", "bad.yaml:2: key 'dt_s': must be > 0"},
@@ -211,7 +216,7 @@ TEST_F(ScenarioConfig, BadValuesNameFileLineAndKey) {
   EXPECT_TRUE(Contains(ErrorOf("dt_s: 0.1\n"), "bad.yaml: key 'route': required"));
 }
 
-TEST_F(ScenarioConfig, FileProblemsNameTheFile) {
+TEST_F(ScenarioConfigFile, FileProblemsNameTheFile) {
   EXPECT_TRUE(Contains(ErrorOf("route: {waypoints_m: [[0, 0], [1, 1]\n"), "bad.yaml:"));
   try {
     LoadScenario(dir_ / "absent.yaml");

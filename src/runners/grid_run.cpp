@@ -1,4 +1,4 @@
-#include "slamkit/eval/grid_run.hpp"
+#include "slamkit/runners/grid_run.hpp"
 
 #include <sys/resource.h>
 

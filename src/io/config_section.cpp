@@ -1,4 +1,4 @@
-#include "yaml_fields.hpp"
+#include "slamkit/io/config_section.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -12,7 +12,7 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 
-namespace slamkit::internal {
+namespace slamkit::config {
 namespace {
 
 // A YAML number; yaml-cpp's conversion also accepts the YAML spellings of infinity and NaN
@@ -34,6 +34,17 @@ std::optional<T> ParseInteger(const YAML::Node& node) {
 }
 
 }  // namespace
+
+YAML::Node LoadYamlFile(const std::filesystem::path& path) {
+  try {
+    return YAML::LoadFile(path.string());
+  } catch (const YAML::BadFile&) {
+    throw InputError(path.string() + ": cannot open file");
+  } catch (const YAML::ParserException& e) {
+    throw InputError(
+        fmt::format("{}:{}: YAML syntax error: {}", path.string(), e.mark.line + 1, e.msg));
+  }
+}
 
 std::string Describe(const YAML::Node& node) {
   if (node.IsScalar()) return "'" + node.Scalar() + "'";
@@ -152,4 +163,4 @@ int ReadChoice(const Section& s, const std::string& key, const std::vector<std::
   return static_cast<int>(it - names.begin());
 }
 
-}  // namespace slamkit::internal
+}  // namespace slamkit::config

@@ -1,14 +1,14 @@
-#include "slamkit/eval/monte_carlo.hpp"
+#include "slamkit/runners/monte_carlo.hpp"
 
 #include <gtest/gtest.h>
 
-#include "slamkit/io/scenario_config.hpp"
+#include "slamkit/runners/scenario_config.hpp"
 
 namespace slamkit {
 namespace {
 
-ScenarioParams ShortScenario(bool known_association) {
-  ScenarioParams s = LoadScenario(std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yaml");
+ScenarioConfig ShortScenario(bool known_association) {
+  ScenarioConfig s = LoadScenario(std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yaml");
   s.ekf.known_association = known_association;
   return s;
 }

@@ -1,4 +1,4 @@
-#include "slamkit/eval/outputs.hpp"
+#include "slamkit/runners/outputs.hpp"
 
 #include <fmt/format.h>
 
@@ -55,15 +55,16 @@ void WriteErrorsCsv(const std::filesystem::path& path, const RunResult& r) {
 
 }  // namespace
 
-nlohmann::json MonteCarloMetrics(const ScenarioParams& scenario, const MonteCarloParams& params,
+nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
                                  const MonteCarloResult& mc) {
   nlohmann::json per_run = nlohmann::json::array();
   for (std::size_t k = 0; k < mc.runs.size(); ++k) per_run.push_back(RunJson(int(k), mc.runs[k]));
   double map_rmse = 0.0;
   for (const RunResult& r : mc.runs) map_rmse += r.map_rmse_m / double(mc.runs.size());
+  const ScenarioParams& scenario = config.scenario;
   return {{"scenario", scenario.name},
           {"motion_model", ToString(scenario.vehicle.kind)},
-          {"known_association", scenario.ekf.known_association},
+          {"known_association", config.ekf.known_association},
           {"runs", params.runs},
           {"seed", params.seed},
           {"steps", mc.t_s.size()},

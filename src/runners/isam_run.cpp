@@ -1,4 +1,4 @@
-#include "slamkit/eval/isam_run.hpp"
+#include "slamkit/runners/isam_run.hpp"
 
 #include <chrono>
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include "slamkit/eval/monte_carlo.hpp"
+#include "slamkit/runners/monte_carlo.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -33,6 +33,15 @@ double AlignedMapRmse(const LandmarkMap& map, const LandmarkWorld& world) {
   return AlignPoints(from, to).rmse_m;
 }
 
+AssociationOutcome OutcomeOf(AssociationDecision::Kind kind) {
+  switch (kind) {
+    case AssociationDecision::Kind::kMatched: return AssociationOutcome::kMatched;
+    case AssociationDecision::Kind::kNew: return AssociationOutcome::kNew;
+    case AssociationDecision::Kind::kDropped: break;
+  }
+  return AssociationOutcome::kDropped;
+}
+
 void ScoreDecisions(const EkfSlam& slam, const std::vector<PointObservation>& observations,
                     const std::vector<AssociationDecision>& decisions, AssociationScorer& scorer) {
   for (std::size_t i = 0; i < decisions.size(); ++i) {
@@ -40,15 +49,16 @@ void ScoreDecisions(const EkfSlam& slam, const std::vector<PointObservation>& ob
     const LandmarkId matched =
         d.kind == AssociationDecision::Kind::kMatched ? slam.LandmarkSourceId(d.landmark)
                                                       : kNoLandmark;
-    scorer.Add(observations[i].id, d, matched);
+    scorer.Add(observations[i].id, OutcomeOf(d.kind), matched);
   }
 }
 
 }  // namespace
 
-RunResult RunEkfSlamOnce(const ScenarioParams& scenario, const LandmarkWorld& world, Rng& rng) {
+RunResult RunEkfSlamOnce(const ScenarioConfig& config, const LandmarkWorld& world, Rng& rng) {
+  const ScenarioParams& scenario = config.scenario;
   const SimRun sim = Simulate(scenario, world, rng);
-  EkfSlam slam(scenario.ekf, MakeMotionModel(scenario.vehicle),
+  EkfSlam slam(config.ekf, MakeMotionModel(scenario.vehicle),
                std::make_unique<RangeBearingModel>(scenario.sensor));
   slam.Reset(sim.initial_pose);
   RunResult out;
@@ -127,7 +137,8 @@ void Aggregate(MonteCarloResult& mc) {
 
 }  // namespace
 
-MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario, const MonteCarloParams& params) {
+MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, const MonteCarloParams& params) {
+  const ScenarioParams& scenario = config.scenario;
   if (params.runs < 1) throw std::invalid_argument("RunMonteCarlo: runs must be >= 1");
   MonteCarloResult mc;
   mc.world = MakeWorld(scenario.world);
@@ -141,7 +152,7 @@ MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario, const MonteCarloP
   arena.execute([&] {
     tbb::parallel_for(0, params.runs, [&](int k) {
       Rng rng = Rng::ForStream(params.seed, static_cast<std::uint64_t>(k));
-      mc.runs[k] = RunEkfSlamOnce(scenario, mc.world, rng);
+      mc.runs[k] = RunEkfSlamOnce(config, mc.world, rng);
       const std::lock_guard lock(progress_mutex);
       ++finished;
       if (params.progress) params.progress(finished, params.runs);

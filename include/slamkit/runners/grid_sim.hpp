@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slamkit/eval/grid_run.hpp"
+#include "slamkit/runners/grid_run.hpp"
 #include "slamkit/sim/laser_sim.hpp"
 
 namespace slamkit {

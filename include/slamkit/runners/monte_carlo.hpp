@@ -10,7 +10,7 @@
 #include "slamkit/eval/consistency.hpp"
 #include "slamkit/eval/errors.hpp"
 #include "slamkit/maps/landmark_map.hpp"
-#include "slamkit/sim/scenario.hpp"
+#include "slamkit/runners/scenario_config.hpp"
 
 namespace slamkit {
 
@@ -28,7 +28,7 @@ struct RunResult {
 };
 
 // Runs EKF-SLAM once over a simulated run of `scenario` in `world`, drawing noise from `rng`.
-RunResult RunEkfSlamOnce(const ScenarioParams& scenario, const LandmarkWorld& world, Rng& rng);
+RunResult RunEkfSlamOnce(const ScenarioConfig& config, const LandmarkWorld& world, Rng& rng);
 
 struct MonteCarloParams {
   int runs = 50;
@@ -59,6 +59,6 @@ struct MonteCarloResult {
 
 // Runs `params.runs` independent runs in parallel. Run k draws from Rng::ForStream(seed, k), so the
 // result is identical for any thread count (wall times aside).
-MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario, const MonteCarloParams& params);
+MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, const MonteCarloParams& params);
 
 }  // namespace slamkit

@@ -1,19 +1,25 @@
 #pragma once
 
 // Typed, validated reading of YAML config maps. Every error is an InputError that names the file,
-// the line and the full key path, so a user can find the mistake without reading the code.
-// Private to the io module.
+// the line and the full key path, so a user can find the mistake without reading the code. Used
+// by io's readers and by the modules that map a config onto their params (runners); only io
+// opens the files.
 
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
-namespace slamkit::internal {
+namespace slamkit::config {
+
+// The YAML document in `path`; InputError naming the file for an unreadable file or a syntax
+// error (with its line).
+YAML::Node LoadYamlFile(const std::filesystem::path& path);
 
 // The range a number must lie in, beyond being finite.
 enum class Bound { kFinite, kNonNegative, kPositive };
@@ -65,4 +71,4 @@ class Section {
 int ReadChoice(const Section& s, const std::string& key, const std::vector<std::string>& names,
                int fallback);
 
-}  // namespace slamkit::internal
+}  // namespace slamkit::config

@@ -5,14 +5,14 @@
 #include <filesystem>
 
 #include "slamkit/core/angle.hpp"
-#include "slamkit/io/scenario_config.hpp"
+#include "slamkit/runners/scenario_config.hpp"
 
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
 
-ScenarioParams Load(const char* name) {
+ScenarioConfig Load(const char* name) {
   return LoadScenario(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / name);
 }
 
@@ -45,14 +45,15 @@ double MinSpacing(const LandmarkWorld& world) {
 }
 
 TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
-  const ScenarioParams s = Load("default.yaml");
+  const ScenarioConfig c = Load("default.yaml");
+  const ScenarioParams& s = c.scenario;
   EXPECT_EQ(s.vehicle.kind, MotionKind::kCarLike);
   EXPECT_EQ(s.vehicle.car_like.wheelbase_m, 4.0);
   EXPECT_EQ(s.dt_s, 0.025);
   EXPECT_EQ(s.sensor_period_steps, 8);
   EXPECT_DOUBLE_EQ(s.sensor.fov_rad, DegToRad(180.0));
   EXPECT_DOUBLE_EQ(s.sensor.sigma_bearing_rad, DegToRad(1.0));
-  EXPECT_FALSE(s.ekf.known_association);
+  EXPECT_FALSE(c.ekf.known_association);
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_GE(world.landmarks.size(), 60u);
   EXPECT_LE(world.landmarks.size(), 100u);
@@ -66,9 +67,10 @@ TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
 }
 
 TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
-  const ScenarioParams s = Load("square_400.yaml");
+  const ScenarioConfig c = Load("square_400.yaml");
+  const ScenarioParams& s = c.scenario;
   EXPECT_EQ(s.vehicle.kind, MotionKind::kOdometry);
-  EXPECT_TRUE(s.ekf.known_association);
+  EXPECT_TRUE(c.ekf.known_association);
   const LandmarkWorld world = MakeWorld(s.world);
   ASSERT_EQ(world.landmarks.size(), 400u);
   for (const Landmark& l : world.landmarks) {
@@ -89,8 +91,9 @@ TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
 }
 
 TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
-  const ScenarioParams s = Load("short.yaml");
-  EXPECT_TRUE(s.ekf.known_association);
+  const ScenarioConfig c = Load("short.yaml");
+  const ScenarioParams& s = c.scenario;
+  EXPECT_TRUE(c.ekf.known_association);
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_EQ(world.landmarks.size(), 30u);
   EXPECT_GT(MinSpacing(world), 5.0);

@@ -1,4 +1,4 @@
-#include "slamkit/io/scenario_config.hpp"
+#include "slamkit/runners/scenario_config.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -7,17 +7,17 @@
 #include <vector>
 
 #include "slamkit/core/angle.hpp"
+#include "slamkit/io/config_section.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/landmark_csv.hpp"
-#include "yaml_fields.hpp"
 
 namespace slamkit {
 namespace {
 
-using internal::Bound;
-using internal::Describe;
-using internal::ReadChoice;
-using internal::Section;
+using config::Bound;
+using config::Describe;
+using config::ReadChoice;
+using config::Section;
 
 void ReadUniform(const Section& s, UniformWorldParams* p) {
   s.Read("min_xy_m", &p->min_xy_m);
@@ -131,11 +131,12 @@ void ReadEkf(const Section& root, EkfSlamParams* p) {
   s.Read("initial_landmark_capacity", &p->initial_landmark_capacity, 1);
 }
 
-ScenarioParams ReadScenario(const YAML::Node& yaml, const std::filesystem::path& path) {
+ScenarioConfig ReadScenario(const YAML::Node& yaml, const std::filesystem::path& path) {
   const Section root(yaml, path.string(), "",
                      {"name", "dt_s", "max_steps", "world", "vehicle", "controller", "route",
                       "initial_pose", "sensor", "ekf"});
-  ScenarioParams p;
+  ScenarioConfig config;
+  ScenarioParams& p = config.scenario;
   root.Read("name", &p.name);
   root.Read("dt_s", &p.dt_s, Bound::kPositive);
   root.Read("max_steps", &p.max_steps, 1);
@@ -150,27 +151,18 @@ ScenarioParams ReadScenario(const YAML::Node& yaml, const std::filesystem::path&
   pose.ReadDegrees("theta_deg", &xyt.z(), Bound::kFinite);
   p.initial_pose = Pose2(xyt);
   ReadSensor(root, &p.sensor, &p.sensor_period_steps);
-  ReadEkf(root, &p.ekf);
+  ReadEkf(root, &config.ekf);
   // Checked last, so that a mistake elsewhere in a file without a route is reported as such.
   if (p.route.waypoints_m.size() < 2) {
     root.Fail("route", "required (a route of at least 2 waypoints)");
   }
-  return p;
+  return config;
 }
 
 }  // namespace
 
-ScenarioParams LoadScenario(const std::filesystem::path& path) {
-  YAML::Node yaml;
-  try {
-    yaml = YAML::LoadFile(path.string());
-  } catch (const YAML::BadFile&) {
-    throw InputError(path.string() + ": cannot open file");
-  } catch (const YAML::ParserException& e) {
-    throw InputError(
-        fmt::format("{}:{}: YAML syntax error: {}", path.string(), e.mark.line + 1, e.msg));
-  }
-  return ReadScenario(yaml, path);
+ScenarioConfig LoadScenario(const std::filesystem::path& path) {
+  return ReadScenario(config::LoadYamlFile(path), path);
 }
 
 }  // namespace slamkit

@@ -1,4 +1,4 @@
-#include "slamkit/eval/grid_sim.hpp"
+#include "slamkit/runners/grid_sim.hpp"
 
 #include <chrono>
 #include <utility>
