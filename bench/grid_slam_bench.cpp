@@ -16,6 +16,7 @@ namespace slamkit {
 namespace {
 
 constexpr int kScans = 1500;
+constexpr double kUsableRangeM = 30.0;  // RbpfGridSlamParams::usable_range_m
 
 // Read once for all benchmarks; null when the data set is not beside the project.
 const CarmenLog* IntelLog() {
@@ -35,7 +36,7 @@ void BM_GridSlamScans(benchmark::State& state) {
   if (!log) return state.SkipWithError("intel.clf not found");
   RbpfGridSlamParams params;
   params.particles = static_cast<int>(state.range(0));
-  params.track_between_updates = state.range(1) != 0;
+  params.tracking_mode = state.range(1) != 0 ? TrackingMode::kTrackedMotion : TrackingMode::kOff;
   int updates = 0;
   for (auto _ : state) {
     RbpfGridSlam slam(params);
@@ -73,7 +74,7 @@ void BM_ScanMatcher(benchmark::State& state) {
   const bool tracking = state.range(0) != 0;
   const RbpfGridSlamParams defaults;
   const ScanMatcherParams& params = tracking ? defaults.tracking : defaults.matcher;
-  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), params);
+  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), kUsableRangeM, params);
   const Pose2 offset = tracking ? Pose2(0.01, 0.0, 0.01) : Pose2(0.1, 0.0, 0.05);
   const Pose2 start = built->path.back().pose.Compose(offset);
   for (auto _ : state) {
@@ -110,7 +111,7 @@ void BM_EvaluatePose(benchmark::State& state) {
   const BuiltMap* built = IntelMap();
   if (!built) return state.SkipWithError("intel.clf not found");
   const ScanMatcherParams params;
-  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), params);
+  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), kUsableRangeM, params);
   const Pose2 pose = built->path.back().pose.Compose(Pose2(0.02, 0.0, 0.0175));
   for (auto _ : state) {
     if (state.range(0) == 0) {

@@ -24,6 +24,7 @@ struct GridOptions {
   bool reference_from_log = false;
   bool interpolate_odometry = false;
   int max_scans = 0;
+  double max_range_m = 0.0;  // 0: from the log
   RbpfGridSlamParams params;
 };
 
@@ -31,6 +32,7 @@ int RunGridCommand(const GridOptions& o) {
   CarmenReadOptions read_options;
   read_options.skip_bad_lines = o.skip_bad_lines;
   read_options.odometry_from_scan_fields = !o.interpolate_odometry;
+  if (o.max_range_m > 0.0) read_options.max_range_m = o.max_range_m;
   CarmenLog log = ReadCarmenLog(o.log, read_options);
   if (o.max_scans > 0 && static_cast<int>(log.scans.size()) > o.max_scans) {
     log.scans.resize(o.max_scans);
@@ -83,13 +85,16 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
   cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--max-range", o->max_range_m,
+                  "the laser's no-return range [m]: a reading at or above it is no return "
+                  "(default: the log's PARAM, else its largest reading)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--interpolate-odometry", o->interpolate_odometry,
                 "odometry at each scan interpolated from the ODOM records at the scan's time, "
                 "instead of the scan record's own odometry fields");
   cmd->add_flag("--reference-from-log", o->reference_from_log,
                 "compare with the poses the log gives (corrected logs): ATE and RPE");
   cmd->callback([o, &exit_code] {
-    FinishGridFilterOptions(o->params);
     exit_code = RunGridCommand(*o);
   });
 }

@@ -141,7 +141,6 @@ void RegisterGridSim(CLI::App& app, int& exit_code) {
   AddSimulationOptions(cmd, *o);
   AddGridFilterOptions(cmd, o->params);
   cmd->callback([o, &exit_code] {
-    FinishGridFilterOptions(o->params);
     exit_code = RunGridSimCommand(*o);
   });
 }

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <map>
+#include <string>
+
 #include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/writers.hpp"
 
@@ -15,7 +18,8 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--angular-update", p.angular_update_rad, "update after turning this far [rad]")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_option("--usable-range", p.insertion.usable_range_m, "laser range used [m]")
+  cmd->add_option("--usable-range", p.usable_range_m,
+                  "laser range used [m]: in the maps, the matching and the tracking")
       ->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--resolution", p.grid.resolution_m, "map cell size [m]")
       ->capture_default_str()->check(CLI::PositiveNumber);
@@ -27,19 +31,40 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--stt", p.motion.stt, "odometry noise: rad per rad turned")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
-  cmd->add_flag("!--match-proposal", p.gaussian_proposal,
-                "take each particle's scan match as its pose (ROS GMapping) instead of drawing "
-                "from the Gaussian fitted around it (Grisetti et al. 2007)");
-  cmd->add_flag("!--odometry-motion", p.motion_from_tracking,
-                "move the particles by raw odometry between updates, not by the tracked motion");
-  cmd->add_flag("!--no-tracking", p.track_between_updates,
-                "poses of scans between updates by odometry alone (as GMapping), not tracked "
-                "against the best map; the particles then move by odometry too");
-}
-
-void FinishGridFilterOptions(RbpfGridSlamParams& p) {
-  p.matcher.usable_range_m = p.insertion.usable_range_m;
-  p.tracking.usable_range_m = p.insertion.usable_range_m;
+  cmd->add_flag_callback(
+      "--match-proposal", [&p] { p.proposal = ProposalScheme::kScanMatch; },
+      "take each particle's scan match as its pose (ROS GMapping) instead of drawing from the "
+      "Gaussian fitted around it (Grisetti et al. 2007)");
+  // Either order of the two flags gives the same mode: --no-tracking wins.
+  cmd->add_flag_callback(
+      "--odometry-motion",
+      [&p] {
+        if (p.tracking_mode == TrackingMode::kTrackedMotion) {
+          p.tracking_mode = TrackingMode::kTrackOnly;
+        }
+      },
+      "move the particles by raw odometry between updates, not by the tracked motion");
+  cmd->add_flag_callback(
+      "--no-tracking", [&p] { p.tracking_mode = TrackingMode::kOff; },
+      "poses of scans between updates by odometry alone (as GMapping), not tracked against the "
+      "best map; the particles then move by odometry too");
+  cmd->add_option("--resampling", p.resampling.scheme, "resampling scheme")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, ResamplingScheme>{{"systematic", ResamplingScheme::kSystematic},
+                                                  {"stratified", ResamplingScheme::kStratified},
+                                                  {"multinomial", ResamplingScheme::kMultinomial}},
+          CLI::ignore_case))
+      ->default_str("systematic");
+  cmd->add_option("--tracking-prior-xy", p.tracking.prior_sigma_xy_m,
+                  "tracking: sigma of the translation prior around the odometry guess [m] "
+                  "(0: none)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--tracking-max-correction", p.tracking_max_correction_m,
+                  "tracking: largest translation correction accepted [m]")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--tracking-max-correction-angle", p.tracking_max_correction_rad,
+                  "tracking: largest heading correction accepted [rad]")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
 }
 
 void WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result) {

@@ -15,9 +15,6 @@ namespace slamkit::app {
 // The RbpfGridSlam options.
 void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& params);
 
-// Call once the options are parsed: one --usable-range for every use of the laser.
-void FinishGridFilterOptions(RbpfGridSlamParams& params);
-
 // DIR/trajectory.txt, DIR/trajectory.tum, DIR/map.pgm + map.yaml and DIR/map.png (the README's
 // output contract); creates `dir`.
 void WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result);

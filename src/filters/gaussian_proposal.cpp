@@ -10,7 +10,7 @@
 
 namespace slamkit {
 
-ProposalDistribution GaussianProposal(const OccupancyGrid& grid, const ScanPoints& points,
+ProposalDistribution GaussianProposal(const GridMapView& grid, const ScanPoints& points,
                                       const Pose2& match, const Pose2& previous,
                                       const Pose2& delta, const OdometryNoiseParams& motion,
                                       const ScanMatcherParams& matcher,

@@ -24,21 +24,62 @@ std::vector<double> NormaliseLogWeights(std::span<const double> log_weights, dou
   return w;
 }
 
+namespace {
+
+// The particle each of the increasing pointers `u` (in [0, 1)) falls on in the cumulative weights;
+// the last particle takes what rounding leaves past the total.
+std::vector<int> Invert(std::span<const double> weights, std::span<const double> u) {
+  const int n = static_cast<int>(weights.size());
+  std::vector<int> keep;
+  keep.reserve(u.size());
+  double cumulative = weights.empty() ? 0.0 : weights[0];
+  int i = 0;
+  for (double pointer : u) {
+    while (pointer > cumulative && i + 1 < n) cumulative += weights[++i];
+    keep.push_back(i);
+  }
+  return keep;
+}
+
+}  // namespace
+
 // Probabilistic Robotics, Table 4.4 (low-variance sampler).
 std::vector<int> SystematicResample(std::span<const double> weights, Rng& rng) {
   const int n = static_cast<int>(weights.size());
-  std::vector<int> keep;
-  keep.reserve(n);
+  std::vector<double> u(n);
   const double step = 1.0 / n;
-  double u = rng.Uniform(0.0, step);
-  double cumulative = weights.empty() ? 0.0 : weights[0];
-  int i = 0;
-  for (int k = 0; k < n; ++k) {
-    while (u > cumulative && i + 1 < n) cumulative += weights[++i];
-    keep.push_back(i);
-    u += step;
+  double pointer = n > 0 ? rng.Uniform(0.0, step) : 0.0;
+  for (double& v : u) {
+    v = pointer;
+    pointer += step;
   }
-  return keep;
+  return Invert(weights, u);
+}
+
+std::vector<int> StratifiedResample(std::span<const double> weights, Rng& rng) {
+  const int n = static_cast<int>(weights.size());
+  std::vector<double> u(n);
+  for (int k = 0; k < n; ++k) u[k] = (k + rng.Uniform()) / n;
+  return Invert(weights, u);
+}
+
+std::vector<int> MultinomialResample(std::span<const double> weights, Rng& rng) {
+  std::vector<double> u(weights.size());
+  for (double& v : u) v = rng.Uniform();
+  std::sort(u.begin(), u.end());
+  return Invert(weights, u);
+}
+
+std::vector<int> Resample(ResamplingScheme scheme, std::span<const double> weights, Rng& rng) {
+  switch (scheme) {
+    case ResamplingScheme::kStratified:
+      return StratifiedResample(weights, rng);
+    case ResamplingScheme::kMultinomial:
+      return MultinomialResample(weights, rng);
+    case ResamplingScheme::kSystematic:
+      break;
+  }
+  return SystematicResample(weights, rng);
 }
 
 }  // namespace slamkit

@@ -7,11 +7,12 @@
 
 namespace slamkit {
 
-ScanPoints PrepareScan(const LaserScan& scan, const ScanMatcherParams& params) {
+ScanPoints PrepareScan(const LaserScan& scan, double usable_range_m,
+                       const ScanMatcherParams& params) {
   ScanPoints points;
   const int stride = std::max(1, params.beam_stride);
   for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); i += stride) {
-    if (!scan.IsReturn(i) || scan.ranges_m[i] > params.usable_range_m) continue;
+    if (!scan.IsReturn(i) || scan.ranges_m[i] > usable_range_m) continue;
     const double a = scan.BeamAngle(i);
     const Eigen::Vector2d dir_laser(std::cos(a), std::sin(a));
     points.ends.push_back(scan.laser_offset.TransformFrom(scan.ranges_m[i] * dir_laser));
@@ -22,9 +23,9 @@ ScanPoints PrepareScan(const LaserScan& scan, const ScanMatcherParams& params) {
 
 namespace {
 
-// The nearest-hit search over a window that lies inside one tile: the same cells and tests as
-// the general search below with one tile lookup instead of two per cell. The window is searched
-// in the same order, so ties resolve the same way.
+// The nearest-hit search over a window that lies inside one tile: the same cells and tests as the
+// general search below with one tile lookup instead of two per cell. The window is searched in the
+// same order, so ties resolve the same way.
 double NearestHitInTile(const OccupancyGrid::CellValue* tile, const OccupancyGrid& grid,
                         const Eigen::Vector2d& end, const CellIndex& c, const CellIndex& f,
                         int window) {
@@ -46,41 +47,58 @@ double NearestHitInTile(const OccupancyGrid::CellValue* tile, const OccupancyGri
   return best;
 }
 
+// The cells the search reads: the map alone (its tiles read directly), or a view with a second
+// layer under the map. Chosen once per EvaluatePose, so the per-cell reads are inlined.
+struct MapOnly {
+  const OccupancyGrid& grid;
+  static constexpr bool kTiles = true;
+  OccupancyGrid::CellValue operator()(const CellIndex& c) const { return grid.LogOddsSteps(c); }
+};
+struct Layered {
+  const GridMapView& view;
+  static constexpr bool kTiles = false;
+  OccupancyGrid::CellValue operator()(const CellIndex& c) const { return view.LogOddsSteps(c); }
+};
+
 // Squared distance from `end` to the nearest cell in the window that is occupied while the cell
-// one step back toward the sensor is free; infinity when there is none.
-double NearestHitDistanceSq(const OccupancyGrid& grid, const Eigen::Vector2d& end,
-                            const Eigen::Vector2d& direction, int window) {
+// one step back toward the sensor is free; infinity when there is none. `grid` gives the geometry
+// (every layer shares it), `cells` the values.
+template <class Cells>
+double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
+                            const Eigen::Vector2d& end, const Eigen::Vector2d& direction,
+                            int window) {
   const double r = grid.resolution();
   const CellIndex c = grid.WorldToCell(end);
   const CellIndex f = grid.WorldToCell(end - r * direction);
-  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells
-  // are the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
-  if (grid.LogOddsSteps(c) > 0 && grid.LogOddsSteps(f) < 0) {
+  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells are
+  // the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
+  if (cells(c) > 0 && cells(f) < 0) {
     return (grid.CellCenter(c) - end).squaredNorm();
   }
-  // f is a neighbour of c, so every cell read lies within window + 1 of c.
-  constexpr int kMask = OccupancyGrid::kTileSize - 1;
-  const int margin = window + 1;
-  if ((c.x & kMask) >= margin && (c.x & kMask) < kMask + 1 - margin &&
-      (c.y & kMask) >= margin && (c.y & kMask) < kMask + 1 - margin) {
-    return NearestHitInTile(grid.TileSteps(c), grid, end, c, f, window);
+  if constexpr (Cells::kTiles) {
+    // f is a neighbour of c, so every cell read lies within window + 1 of c.
+    constexpr int kMask = OccupancyGrid::kTileSize - 1;
+    const int margin = window + 1;
+    if ((c.x & kMask) >= margin && (c.x & kMask) < kMask + 1 - margin && (c.y & kMask) >= margin &&
+        (c.y & kMask) < kMask + 1 - margin) {
+      return NearestHitInTile(grid.TileSteps(c), grid, end, c, f, window);
+    }
   }
   double best = std::numeric_limits<double>::infinity();
   for (int dx = -window; dx <= window; ++dx) {
     for (int dy = -window; dy <= window; ++dy) {
       const CellIndex hit{c.x + dx, c.y + dy};
-      if (grid.LogOddsSteps(hit) <= 0) continue;
-      if (grid.LogOddsSteps({f.x + dx, f.y + dy}) >= 0) continue;
+      if (cells(hit) <= 0) continue;
+      if (cells({f.x + dx, f.y + dy}) >= 0) continue;
       best = std::min(best, (grid.CellCenter(hit) - end).squaredNorm());
     }
   }
   return best;
 }
 
-}  // namespace
-
-MatchQuality EvaluatePose(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& pose,
-                          const ScanMatcherParams& params) {
+template <class Cells>
+MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanPoints& points,
+                      const Pose2& pose, const ScanMatcherParams& params) {
   MatchQuality q;
   const double inv_score = 1.0 / (params.score_sigma_m * params.score_sigma_m);
   const double inv_like = 0.5 / (params.likelihood_sigma_m * params.likelihood_sigma_m);
@@ -89,9 +107,8 @@ MatchQuality EvaluatePose(const OccupancyGrid& grid, const ScanPoints& points, c
   const Eigen::Matrix2d R = pose.rotation();
   const Eigen::Vector2d t = pose.translation();
   for (std::size_t i = 0; i < points.ends.size(); ++i) {
-    const double d_sq =
-        NearestHitDistanceSq(grid, R * points.ends[i] + t, R * points.directions[i],
-                             params.search_cells);
+    const double d_sq = NearestHitDistanceSq(grid, cells, R * points.ends[i] + t,
+                                             R * points.directions[i], params.search_cells);
     if (std::isfinite(d_sq)) {
       ++q.matched;
       q.score += std::exp(-d_sq * inv_score);
@@ -101,6 +118,14 @@ MatchQuality EvaluatePose(const OccupancyGrid& grid, const ScanPoints& points, c
     }
   }
   return q;
+}
+
+}  // namespace
+
+MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
+                          const ScanMatcherParams& params) {
+  if (grid.second == nullptr) return Evaluate(grid.map, MapOnly{grid.map}, points, pose, params);
+  return Evaluate(grid.map, Layered{grid}, points, pose, params);
 }
 
 namespace {
@@ -113,12 +138,13 @@ double PriorPenalty(const Pose2& initial, const Pose2& pose, const ScanMatcherPa
                (params.prior_sigma_xy_m * params.prior_sigma_xy_m);
   }
   if (params.prior_sigma_theta_rad > 0.0) {
-    penalty += std::pow(WrapAngle(pose.theta() - initial.theta()) / params.prior_sigma_theta_rad, 2);
+    penalty +=
+        std::pow(WrapAngle(pose.theta() - initial.theta()) / params.prior_sigma_theta_rad, 2);
   }
   return penalty;
 }
 
-MatchResult HillClimb(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& initial,
+MatchResult HillClimb(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                       const ScanMatcherParams& params) {
   MatchResult best{initial, EvaluatePose(grid, points, initial, params), false};
   double best_objective = best.quality.score;
@@ -126,12 +152,10 @@ MatchResult HillClimb(const OccupancyGrid& grid, const ScanPoints& points, const
   int refinements = 0;
   while (refinements <= params.refinements) {
     const Pose2 from = best.pose;
-    const Pose2 moves[6] = {{from.x() + lin, from.y(), from.theta()},
-                            {from.x() - lin, from.y(), from.theta()},
-                            {from.x(), from.y() + lin, from.theta()},
-                            {from.x(), from.y() - lin, from.theta()},
-                            {from.x(), from.y(), from.theta() + ang},
-                            {from.x(), from.y(), from.theta() - ang}};
+    const Pose2 moves[6] = {
+        {from.x() + lin, from.y(), from.theta()}, {from.x() - lin, from.y(), from.theta()},
+        {from.x(), from.y() + lin, from.theta()}, {from.x(), from.y() - lin, from.theta()},
+        {from.x(), from.y(), from.theta() + ang}, {from.x(), from.y(), from.theta() - ang}};
     bool improved = false;
     for (const Pose2& candidate : moves) {
       const MatchQuality q = EvaluatePose(grid, points, candidate, params);
@@ -163,7 +187,7 @@ ScanPoints EveryNth(const ScanPoints& points, int n) {
 
 }  // namespace
 
-MatchResult MatchScan(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& initial,
+MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                       const ScanMatcherParams& params) {
   ScanMatcherParams coarse = params;
   coarse.search_cells = params.coarse_search_cells;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -29,9 +31,7 @@ struct StreamClock {
 class CarmenParser {
  public:
   CarmenParser(const std::filesystem::path& path, const CarmenReadOptions& options)
-      : file_(path.string()), options_(options) {
-    laser_.max_range_m = options.default_max_range_m;
-  }
+      : file_(path.string()), options_(options) {}
 
   // One non-blank, non-comment line; throws InputError for a malformed one.
   void Parse(std::span<const std::string_view> tokens, int line) {
@@ -43,6 +43,7 @@ class CarmenParser {
       log_.odometry.push_back(odom);
     } else if (kind == "FLASER") {
       AddScan(fields, carmen::ParseFlaser(fields, laser_), line);
+      if (!laser_.max_range_m) unranged_.push_back(log_.scans.size() - 1);
     } else if (kind == "ROBOTLASER1") {
       AddScan(fields, carmen::ParseRobotLaser1(fields), line);
     } else if (kind == "PARAM") {
@@ -54,6 +55,8 @@ class CarmenParser {
   CarmenLog Finish();
 
  private:
+  void SetMaxRanges();
+
   void AddScan(const text::Fields& fields, LaserScan scan, int line) {
     Tick(fields, scan.t_s, line, &scan_clock_);
     log_.scans.push_back(std::move(scan));
@@ -79,6 +82,7 @@ class CarmenParser {
   StreamClock odom_clock_;
   StreamClock scan_clock_;
   CarmenLog log_;
+  std::vector<std::size_t> unranged_;  // FLASER scans that no PARAM gave a max range
 };
 
 // The pose at t_s between the records of `odometry` (sorted by time, not empty) that bracket it:
@@ -97,7 +101,24 @@ Pose2 InterpolateOdometry(const Trajectory& odometry, double t_s) {
                a.pose.theta() + s * WrapAngle(b.pose.theta() - a.pose.theta()));
 }
 
+// The no-return range of the scans that no PARAM covers: their largest reading (see the
+// header); then the user's override over every scan.
+void CarmenParser::SetMaxRanges() {
+  float largest = 0.0f;
+  for (std::size_t k : unranged_) {
+    for (float r : log_.scans[k].ranges_m) {
+      if (std::isfinite(r)) largest = std::max(largest, r);
+    }
+  }
+  const double derived = largest > 0.0f ? double(largest) : std::numeric_limits<double>::infinity();
+  for (std::size_t k : unranged_) log_.scans[k].max_range_m = derived;
+  if (options_.max_range_m) {
+    for (LaserScan& scan : log_.scans) scan.max_range_m = *options_.max_range_m;
+  }
+}
+
 CarmenLog CarmenParser::Finish() {
+  SetMaxRanges();
   if (!log_.odometry.empty() && !options_.odometry_from_scan_fields) {
     Trajectory sorted = log_.odometry;
     std::stable_sort(sorted.begin(), sorted.end(),

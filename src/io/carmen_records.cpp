@@ -5,6 +5,7 @@
 #include <cfloat>
 #include <cstddef>
 #include <iterator>
+#include <limits>
 #include <string_view>
 
 #include "slamkit/core/angle.hpp"
@@ -88,7 +89,7 @@ LaserScan ParseFlaser(const Fields& fields, const FrontLaser& laser) {
   // n odd (181 or 361 beams): both ends of the field of view are included.
   scan.angle_min_rad = -laser.fov_rad / 2.0;
   scan.angle_increment_rad = n > 1 && n % 2 == 1 ? laser.fov_rad / (n - 1) : laser.fov_rad / n;
-  scan.max_range_m = laser.max_range_m;
+  scan.max_range_m = laser.max_range_m.value_or(std::numeric_limits<double>::infinity());
   scan.laser_offset = laser.offset;
   return scan;
 }

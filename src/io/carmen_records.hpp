@@ -5,6 +5,7 @@
 // 'name': reason ('token')`.
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -18,8 +19,10 @@ namespace slamkit::carmen {
 // The front-laser settings that a FLASER record leaves implicit, from the PARAM records so far.
 struct FrontLaser {
   double fov_rad = M_PI;
-  double max_range_m = 81.83;
-  bool max_range_from_laser_param = false;  // laser_front_laser_max_range wins over robot_...
+  // The no-return range the PARAM records give, if any: laser_front_laser_max_range wins over
+  // robot_front_laser_max.
+  std::optional<double> max_range_m;
+  bool max_range_from_laser_param = false;
   Pose2 offset;
 };
 

@@ -21,7 +21,6 @@ class CorridorProposalTest : public ::testing::Test {
     for (double x = 0.0; x <= 12.0; x += 1.0) {
       InsertScan(map_, Pose2(x, 0.0, 0.0), ScanAt(Pose2(x, 0.0, 0.0)), insertion);
     }
-    matcher_.usable_range_m = 8.0;
     weak_prior_ = {.srr = 1.0, .srt = 1.0, .str = 1.0, .stt = 1.0};
   }
   LaserScan ScanAt(const Pose2& pose) {
@@ -29,7 +28,7 @@ class CorridorProposalTest : public ::testing::Test {
     return SimulateScan(corridor_, pose, laser_, rng);
   }
   ProposalDistribution ProposalAt(const Pose2& match) {
-    const ScanPoints points = PrepareScan(ScanAt(truth_), matcher_);
+    const ScanPoints points = PrepareScan(ScanAt(truth_), 8.0, matcher_);
     return GaussianProposal(map_, points, match, previous_, previous_.Between(truth_), weak_prior_,
                             matcher_);
   }

@@ -27,7 +27,7 @@ TEST(ScanMatcher, RecoversKnownOffsetOnSyntheticMap) {
   const OccupancyGrid grid = RoomMap();
   const ScanMatcherParams params;
   for (const Pose2& truth : {Pose2(0.5, 0.3, 0.2), Pose2(-2.0, -1.0, -1.0), Pose2(2, 2.5, 2.5)}) {
-    const ScanPoints points = PrepareScan(RoomScan(truth), params);
+    const ScanPoints points = PrepareScan(RoomScan(truth), 30.0, params);
     const Pose2 guess = truth.Compose(Pose2(0.15, -0.1, 0.05));
     const MatchResult m = MatchScan(grid, points, guess, params);
     EXPECT_TRUE(m.accepted);
@@ -77,7 +77,7 @@ TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
     params.search_cells = window;
     for (int k = 0; k < 200; ++k) {
       const Pose2 truth(rng.Uniform(-6, 6), rng.Uniform(-4, 4), rng.Uniform(-M_PI, M_PI));
-      const ScanPoints points = PrepareScan(RoomScan(truth), params);
+      const ScanPoints points = PrepareScan(RoomScan(truth), 30.0, params);
       const Pose2 pose =
           truth.Compose(Pose2(rng.Normal(0, 0.05), rng.Normal(0, 0.05), rng.Normal(0, 0.02)));
       const MatchQuality got = EvaluatePose(grid, points, pose, params);
@@ -107,8 +107,7 @@ TEST(ScanMatcher, PriorHoldsTheGuessAlongAHalfMappedCorridor) {
   InsertScan(grid, Pose2(), scan_at(Pose2()), insertion);
   const Pose2 truth(0.6, 0.0, 0.0);
   ScanMatcherParams params = TrackingMatcherParams();
-  params.usable_range_m = 8.0;
-  const ScanPoints points = PrepareScan(scan_at(truth), params);
+  const ScanPoints points = PrepareScan(scan_at(truth), 8.0, params);
   const Pose2 guess(0.6, 0.04, 0.0);
   const MatchResult held = MatchScan(grid, points, guess, params);
   EXPECT_NEAR(held.pose.x(), truth.x(), 0.01);
@@ -116,6 +115,32 @@ TEST(ScanMatcher, PriorHoldsTheGuessAlongAHalfMappedCorridor) {
   params.prior_sigma_xy_m = 0.0;
   const MatchResult slid = MatchScan(grid, points, guess, params);
   EXPECT_GT(std::abs(slid.pose.x() - truth.x()), 0.03) << "no drift to hold: the test is moot";
+}
+
+// A second layer is read only where the map is unknown: an empty map over the room's layer
+// scores as the room itself; the room over any layer scores as the room alone wherever the room
+// is known; and the matcher climbs to the same pose through the layer.
+TEST(ScanMatcher, SecondLayerFillsTheMapsUnknownCells) {
+  const OccupancyGrid room = RoomMap();
+  const OccupancyGrid empty;
+  const ScanMatcherParams params;
+  const Pose2 truth(0.5, 0.3, 0.2), guess(0.6, 0.25, 0.25);
+  const ScanPoints points = PrepareScan(RoomScan(truth), 30.0, params);
+  const MatchQuality alone = EvaluatePose(room, points, guess, params);
+  const MatchQuality layered = EvaluatePose(GridMapView(empty, &room), points, guess, params);
+  // The same cells; the map-only path reads them from the tile, the layered one cell by cell,
+  // which rounds the distances differently in the last bits.
+  EXPECT_EQ(layered.matched, alone.matched);
+  EXPECT_NEAR(layered.score, alone.score, 1e-9);
+  EXPECT_NEAR(layered.log_likelihood, alone.log_likelihood, 1e-9);
+  EXPECT_NEAR(EvaluatePose(GridMapView(room, &room), points, guess, params).score, alone.score,
+              1e-9);
+  EXPECT_EQ(EvaluatePose(empty, points, guess, params).matched, 0);
+  const MatchResult m = MatchScan(GridMapView(empty, &room), points, guess, params);
+  const MatchResult m_alone = MatchScan(room, points, guess, params);
+  EXPECT_TRUE(m.accepted);
+  EXPECT_NEAR(m.pose.x(), m_alone.pose.x(), 1e-6);
+  EXPECT_NEAR(m.pose.y(), m_alone.pose.y(), 1e-6);
 }
 
 TEST(Resampling, SystematicKeepsHeavyParticlesAndNeffMeasuresSpread) {

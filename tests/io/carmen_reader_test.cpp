@@ -78,7 +78,7 @@ TEST_F(CarmenReader, ReadsIntel) {
   for (std::size_t k = 0; k < log.scans.size(); ++k) {
     const LaserScan& scan = log.scans[k];
     ASSERT_EQ(scan.ranges_m.size(), 180u);
-    EXPECT_EQ(scan.max_range_m, 81.83);
+    EXPECT_EQ(scan.max_range_m, double(81.83f));  // no PARAM: the largest reading
     for (int i = 0; i < 180; ++i) no_returns += scan.IsReturn(i) ? 0 : 1;
     if (k > 0 && scan.t_s < log.scans[k - 1].t_s) ++scans_back;
   }
@@ -198,7 +198,51 @@ TEST_F(CarmenReader, FrontLaserGeometryFromParams) {
 
   const CarmenLog plain = ReadCarmenLog(Write("FLASER 4 1 2 3 4 0 0 0 0 0 0 2 host 0\n"));
   EXPECT_DOUBLE_EQ(plain.scans[0].angle_increment_rad, M_PI / 4.0);
-  EXPECT_EQ(plain.scans[0].max_range_m, 81.83);
+  EXPECT_EQ(plain.scans[0].max_range_m, 4.0);  // no PARAM: the largest reading
+}
+
+// Without a PARAM, the no-return range is the largest reading over all the log's scans: the
+// beams at it are no-returns, every shorter one is a return.
+TEST_F(CarmenReader, MaxRangeWithoutParamIsTheLargestReading) {
+  const CarmenLog log = ReadCarmenLog(Write("FLASER 3 1 2 3 0 0 0 0 0 0 1 host 0\n"
+                                            "FLASER 3 1 40.5 2 0 0 0 0 0 0 2 host 0\n"
+                                            "FLASER 3 40.5 7 0 0 0 0 0 0 0 3 host 0\n"));
+  ASSERT_EQ(log.scans.size(), 3u);
+  for (const LaserScan& scan : log.scans) EXPECT_EQ(scan.max_range_m, double(40.5f));
+  EXPECT_TRUE(log.scans[0].IsReturn(2));    // 3 m
+  EXPECT_FALSE(log.scans[1].IsReturn(1));   // 40.5 m: the no-return value
+  EXPECT_TRUE(log.scans[2].IsReturn(1));    // 7 m
+  EXPECT_FALSE(log.scans[2].IsReturn(2));   // 0: never a return
+}
+
+// A PARAM gives the range of the scans after it; scans before it take the largest reading of the
+// scans that no PARAM covers; ROBOTLASER1 records carry their own.
+TEST_F(CarmenReader, MaxRangeFromParamCoversTheScansAfterIt) {
+  const CarmenLog log = ReadCarmenLog(
+      Write("FLASER 2 1 30 0 0 0 0 0 0 1 host 0\n"
+            "PARAM robot_front_laser_max 20 host 0\n"
+            "FLASER 2 1 50 0 0 0 0 0 0 2 host 0\n"
+            "ROBOTLASER1 0 -1.5 3.0 0.01 12 0.01 0 2 1.0 2.0 0 0 0 0 0 0 0 0 0 0 0 0 3 host 3\n"));
+  ASSERT_EQ(log.scans.size(), 3u);
+  EXPECT_EQ(log.scans[0].max_range_m, 30.0);  // the uncovered scans' largest reading, not 50
+  EXPECT_EQ(log.scans[1].max_range_m, 20.0);
+  EXPECT_FALSE(log.scans[1].IsReturn(1));
+  EXPECT_EQ(log.scans[2].max_range_m, 12.0);
+}
+
+TEST_F(CarmenReader, MaxRangeOptionOverridesTheLog) {
+  CarmenReadOptions options;
+  options.max_range_m = 25.0;
+  const CarmenLog log = ReadCarmenLog(
+      Write("FLASER 2 1 30 0 0 0 0 0 0 1 host 0\n"
+            "PARAM laser_front_laser_max_range 20 host 0\n"
+            "FLASER 2 1 24 0 0 0 0 0 0 2 host 0\n"
+            "ROBOTLASER1 0 -1.5 3.0 0.01 12 0.01 0 2 1.0 2.0 0 "
+            "0 0 0 0 0 0 0 0 0 0 0 3 host 3\n"),
+      options);
+  ASSERT_EQ(log.scans.size(), 3u);
+  for (const LaserScan& scan : log.scans) EXPECT_EQ(scan.max_range_m, 25.0);
+  EXPECT_TRUE(log.scans[1].IsReturn(1));  // 24 m: a return under the user's range
 }
 
 TEST_F(CarmenReader, ReadsRobotLaser1) {

@@ -30,7 +30,7 @@ TEST(SimulateScan, EqualsCastRayWithoutNoise) {
   Rng rng(1);
   const LaserScan scan = SimulateScan(maze, robot, params, rng);
   ASSERT_EQ(scan.ranges_m.size(), 180u);
-  EXPECT_EQ(scan.max_range_m, 81.83);
+  EXPECT_EQ(scan.max_range_m, params.max_range_m);
   EXPECT_TRUE(scan.laser_offset.vector().isApprox(params.laser_offset.vector()));
   const Pose2 laser = robot.Compose(params.laser_offset);
   int no_returns = 0;
@@ -40,7 +40,7 @@ TEST(SimulateScan, EqualsCastRayWithoutNoise) {
     if (r >= 15.0) {
       ++no_returns;
       EXPECT_FALSE(scan.IsReturn(i)) << i;
-      EXPECT_EQ(scan.ranges_m[i], 81.83f) << i;
+      EXPECT_EQ(scan.ranges_m[i], static_cast<float>(params.max_range_m)) << i;
     } else {
       EXPECT_NEAR(scan.ranges_m[i], r, 1e-5) << i;
     }

@@ -29,7 +29,7 @@ struct ProposalDistribution {
 // p(x | m, x', u, z) is approximated by a Gaussian fitted to samples x_j around the scan match,
 // each weighted by τ_j = p(z | m, x_j) · p(x_j | x', u); η = Σ τ_j / K is the particle's weight
 // factor. `previous` is the particle's pose at its last update and `delta` the odometry since.
-ProposalDistribution GaussianProposal(const OccupancyGrid& grid, const ScanPoints& points,
+ProposalDistribution GaussianProposal(const GridMapView& grid, const ScanPoints& points,
                                       const Pose2& match, const Pose2& previous,
                                       const Pose2& delta, const OdometryNoiseParams& motion,
                                       const ScanMatcherParams& matcher,

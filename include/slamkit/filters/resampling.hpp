@@ -13,8 +13,26 @@ double EffectiveSampleSize(std::span<const double> weights);
 // Normalised weights from log-weights scaled by `gain` (softmax, stable for large magnitudes).
 std::vector<double> NormaliseLogWeights(std::span<const double> log_weights, double gain = 1.0);
 
-// Systematic (low-variance) resampling: the indices of the particles to keep, one per particle,
-// in increasing order. One uniform draw from `rng`.
+// Each scheme returns the indices of the particles to keep, one per particle, in increasing order;
+// particle i is kept about N · w_i times. They differ in how much that count varies.
+enum class ResamplingScheme {
+  // Thrun's low-variance sampler: one uniform draw, then N equally spaced pointers. Particle i is
+  // kept ⌊N w_i⌋ or ⌈N w_i⌉ times.
+  kSystematic,
+  // One uniform draw in each of the N strata [k/N, (k+1)/N): N draws, less variance than
+  // multinomial, a little more than systematic.
+  kStratified,
+  // N independent draws from the weights (the textbook bootstrap filter): the most variance.
+  kMultinomial,
+};
+
+// Probabilistic Robotics, Table 4.4 (low-variance sampler). One uniform draw from `rng`.
 std::vector<int> SystematicResample(std::span<const double> weights, Rng& rng);
+// N uniform draws from `rng`, one per stratum.
+std::vector<int> StratifiedResample(std::span<const double> weights, Rng& rng);
+// N uniform draws from `rng`, each inverted through the cumulative weights.
+std::vector<int> MultinomialResample(std::span<const double> weights, Rng& rng);
+
+std::vector<int> Resample(ResamplingScheme scheme, std::span<const double> weights, Rng& rng);
 
 }  // namespace slamkit

@@ -5,13 +5,13 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/filters/grid_map_view.hpp"
 #include "slamkit/maps/occupancy_grid.hpp"
 #include "slamkit/core/laser_scan.hpp"
 
 namespace slamkit {
 
 struct ScanMatcherParams {
-  double usable_range_m = 30.0;    // beams longer than this are not matched
   int beam_stride = 1;             // match every k-th beam
   int search_cells = 1;            // window half-width around each beam end, in cells
   double score_sigma_m = 0.05;     // width of each beam's score exp(−d²/σ²)
@@ -42,7 +42,10 @@ struct ScanPoints {
   std::vector<Eigen::Vector2d> directions;
 };
 
-ScanPoints PrepareScan(const LaserScan& scan, const ScanMatcherParams& params);
+// Every params.beam_stride-th beam that returned within `usable_range_m` (the laser's usable
+// range: the same one the map insertion cuts beams at).
+ScanPoints PrepareScan(const LaserScan& scan, double usable_range_m,
+                       const ScanMatcherParams& params);
 
 struct MatchQuality {
   double score = 0.0;           // Σ exp(−d²/σ²) over beams (larger is better)
@@ -50,10 +53,11 @@ struct MatchQuality {
   int matched = 0;              // beams that found an occupied cell in their window
 };
 
-// Evaluates `points` at robot pose `pose` against `grid`: each beam end looks for the nearest
-// occupied cell in a small window whose neighbour toward the sensor is free (GMapping's test),
-// and d is the distance from the end to that cell's centre.
-MatchQuality EvaluatePose(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& pose,
+// Evaluates `points` at robot pose `pose` against the map `grid` (a view: the map, and a second
+// layer where it is unknown): each beam end looks for the nearest occupied cell in a small
+// window whose neighbour toward the sensor is free (GMapping's test), and d is the distance from
+// the end to that cell's centre. A view without a second layer reads the map's tiles directly.
+MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
                           const ScanMatcherParams& params);
 
 struct MatchResult {
@@ -64,7 +68,7 @@ struct MatchResult {
 
 // Hill climbing from `initial` on the score, with six moves (±x, ±y, ±θ) and step halving;
 // a coarse pass first, then the fine one from its result.
-MatchResult MatchScan(const OccupancyGrid& grid, const ScanPoints& points, const Pose2& initial,
+MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                       const ScanMatcherParams& params);
 
 }  // namespace slamkit

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,9 @@ struct CarmenReadOptions {
   // the scan in the file, whereas interpolating by its jittery timestamps is off by more than
   // 17 cm or 6.7° for 1 % of the scans.
   bool odometry_from_scan_fields = true;
-  // A FLASER scan's max_range_m when no PARAM laser_front_laser_max_range or
-  // robot_front_laser_max gives it (81.83 m is the no-return reading of the Intel log).
-  double default_max_range_m = 81.83;
+  // The laser's no-return range, when the user knows it better than the log: if set, every
+  // scan's max_range_m (FLASER and ROBOTLASER1) is this, whatever the log says.
+  std::optional<double> max_range_m;
 };
 
 // A CARMEN log: the scans in log order with the odometry at each scan's timestamp, the raw
@@ -51,11 +52,17 @@ struct CarmenLog {
 // documents, or radians when at most 2π, as in csail-corrected.log.gz), else π, centred on the
 // heading: angle_min_rad = -fov/2; with n beams the increment is fov/n for even n (180 beams at
 // 1°, the last one at +89°) and fov/(n-1) for odd n (181 or 361 beams, both ends included).
-// max_range_m is PARAM laser_front_laser_max_range, else robot_front_laser_max, else
-// options.default_max_range_m; laser_offset is (PARAM robot_frontlaser_offset, 0, 0).
+// max_range_m (the no-return range: a reading at or above it is no return) is, in this order:
+// options.max_range_m when set; PARAM laser_front_laser_max_range, else robot_front_laser_max,
+// from the PARAM records before the scan; else derived from the log: the largest reading (as
+// stored, a float) of all FLASER scans that no PARAM covers. Lasers write their no-return value
+// as that largest reading (81.83 in intel.clf, 81.91 in csail), so those beams become no-returns
+// and every shorter one stays a return; in a log where every beam returned, only the beams at
+// the largest reading are lost. Without any reading (no finite positive range) it is infinity.
+// laser_offset is (PARAM robot_frontlaser_offset, 0, 0).
 // logged_pose is the record's x y theta. ROBOTLASER1: angle_min_rad = start_angle, the increment
-// is angular_resolution, max_range_m = max_range, logged_pose is the robot pose and laser_offset
-// the laser pose seen from the robot pose.
+// is angular_resolution, max_range_m = max_range (or options.max_range_m), logged_pose is the
+// robot pose and laser_offset the laser pose seen from the robot pose.
 //
 // Odometry at a scan: with ODOM records (and not odometry_from_scan_fields), linear interpolation
 // between the ODOM records (ordered by timestamp) that bracket the scan's timestamp, the heading

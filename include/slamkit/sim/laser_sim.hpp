@@ -19,7 +19,7 @@ namespace slamkit {
 struct LaserSimParams {
   int beams = 180;
   double fov_rad = std::numbers::pi;
-  double max_range_m = 81.83;    // the value written for a beam with no return
+  double max_range_m = 80.0;     // the value written for a beam with no return (a SICK LMS's)
   double range_limit_m = 30.0;   // walls at or beyond this (or max_range_m) give no return
   double sigma_range_m = 0.01;   // Gaussian range noise, on returns only
   Pose2 laser_offset;            // the laser in the robot frame
