@@ -14,7 +14,7 @@ cmake -S examples/cpp -B build/examples -G Ninja -DCMAKE_PREFIX_PATH="$prefix" >
 cmake --build build/examples -j "$(nproc)"
 for program in ekf_landmarks grid_laser; do
   output=$(build/examples/$program)
-  echo "$program: $output"
+  printf '%s:\n%s\n' "$program" "$output"
   grep -q "^final pose:" <<<"$output" || { echo "test: $program printed no final pose" >&2; exit 1; }
 done
 scripts/setup.sh asan
