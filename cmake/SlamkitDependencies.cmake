@@ -1,5 +1,7 @@
-# Every dependency is a Debian 12 package (scripts/setup.sh installs them).
-# CLI11 is for the slamkit program only.
+# Every dependency is a Debian 12 package (scripts/setup.sh installs them). A package that the
+# libraries' interface references (a module's DEPS) must also be found by
+# cmake/slamkitConfig.cmake.in, for projects that use the installed package. CLI11 is for the
+# slamkit program only.
 find_package(Threads REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(fmt REQUIRED)
@@ -11,9 +13,6 @@ find_package(TBB REQUIRED)
 find_package(Boost 1.74 REQUIRED)  # header-only parts: Boost.Math
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
-
-# A package that the libraries' interface references (their PUBLIC dependencies) must also be
-# found by cmake/slamkitConfig.cmake.in, for projects that use the installed package.
 
 if(SLAMKIT_BUILD_REPORT)
   # MathGL, for the report module only (cmake/FindSlamkitMathGL.cmake): slamkit::mathgl.
