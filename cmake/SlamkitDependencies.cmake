@@ -1,4 +1,7 @@
-# Every dependency is a Debian 12 package (scripts/setup.sh installs them).
+# Every dependency is a Debian 12 package (scripts/setup.sh installs them). A package that the
+# libraries' interface references (a module's DEPS) must also be found by
+# cmake/slamkitConfig.cmake.in, for projects that use the installed package. CLI11 is for the
+# slamkit program only.
 find_package(Threads REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(fmt REQUIRED)
@@ -11,13 +14,12 @@ find_package(Boost 1.74 REQUIRED)  # header-only parts: Boost.Math
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
 
-# MathGL's own CMake config references optional front-ends (Qt, MPI) whose files Debian splits
-# into other packages, so the core library is located directly.
-find_path(MATHGL_INCLUDE_DIR mgl2/mgl_cf.h REQUIRED)
-find_library(MATHGL_LIBRARY mgl REQUIRED)
-add_library(slamkit_mathgl INTERFACE)
-target_include_directories(slamkit_mathgl SYSTEM INTERFACE ${MATHGL_INCLUDE_DIR})
-target_link_libraries(slamkit_mathgl INTERFACE ${MATHGL_LIBRARY})
+if(SLAMKIT_BUILD_REPORT)
+  # MathGL, for the report module only (cmake/FindSlamkitMathGL.cmake): slamkit::mathgl.
+  find_package(SlamkitMathGL REQUIRED)
+  # The name src/report links.
+  add_library(slamkit_mathgl ALIAS slamkit::mathgl)
+endif()
 
 if(SLAMKIT_BUILD_TESTS)
   find_package(GTest REQUIRED)

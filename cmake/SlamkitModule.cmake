@@ -1,9 +1,12 @@
-# Warnings and sanitizers for the project's own targets only.
+# Warnings and sanitizers for the project's own targets only. Everything here is PRIVATE (or
+# build-tree only): none of it reaches the interface of the installed, exported targets.
 function(slamkit_target_options target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror -Wpedantic)
   if(SLAMKIT_NATIVE)
     # Eigen's kernels are where the EKF spends its time; with AVX2/AVX-512 and FMA the covariance
-    # downdate runs 2-3x faster than with the SSE2 baseline.
+    # downdate runs 2-3x faster than with the SSE2 baseline. PRIVATE on purpose: an installed
+    # package must not impose -march=native on the code that links it (build the package with
+    # SLAMKIT_NATIVE=OFF to run it on any x86-64; slamkitConfig.cmake reports slamkit_NATIVE).
     target_compile_options(${target} PRIVATE -march=native)
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
       # GCC 12 reports these inside Eigen's AVX packet code on fixed-size objects (false
@@ -21,30 +24,84 @@ endfunction()
 
 # slamkit_module(NAME DEPS dep1 dep2 ...): static library slamkit_NAME, alias slamkit::NAME.
 # Sources are listed by the caller with target_sources.
+#
+# The module is installed with no extra lines: the library (export set slamkitTargets, exported
+# as slamkit::NAME, the same name as the in-tree alias, so code links the same way whether it
+# uses the build tree or the installed package) and its headers include/slamkit/NAME/.
+#
+# A module with an option SLAMKIT_BUILD_<NAME> set to OFF (SLAMKIT_BUILD_REPORT) is disabled: the
+# caller's target_sources still works, but slamkit_NAME is then an INTERFACE library that
+# compiles nothing, there is no slamkit::NAME, and nothing of it is installed.
 function(slamkit_module name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  string(TOUPPER "${name}" upper)
+  if(DEFINED SLAMKIT_BUILD_${upper} AND NOT SLAMKIT_BUILD_${upper})
+    add_library(slamkit_${name} INTERFACE)
+    message(STATUS "slamkit: module ${name} disabled (SLAMKIT_BUILD_${upper}=OFF)")
+    return()
+  endif()
   add_library(slamkit_${name} STATIC)
   add_library(slamkit::${name} ALIAS slamkit_${name})
-  target_include_directories(slamkit_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
+  set_target_properties(slamkit_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(slamkit_${name} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_link_libraries(slamkit_${name} PUBLIC ${ARG_DEPS})
   slamkit_target_options(slamkit_${name})
   if(SLAMKIT_SANITIZE)
-    target_link_options(slamkit_${name} INTERFACE -fsanitize=address,undefined)
+    target_link_options(slamkit_${name} INTERFACE $<BUILD_INTERFACE:-fsanitize=address,undefined>)
   endif()
+
+  install(TARGETS slamkit_${name} EXPORT slamkitTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+          LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  if(IS_DIRECTORY ${PROJECT_SOURCE_DIR}/include/slamkit/${name})
+    install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/slamkit/${name}
+            DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/slamkit)
+  endif()
+  set_property(GLOBAL APPEND PROPERTY SLAMKIT_INSTALLED_MODULES ${name})
 endfunction()
 
-# slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...]): one gtest binary registered with ctest.
+# slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...] [NEEDS_CLI]): one gtest binary registered
+# with ctest. Tests that run the `slamkit` program (NEEDS_CLI, and every test in tests/apps) see
+# its path as SLAMKIT_CLI.
+#
+# A test that cannot be built in this configuration is skipped with a message: one that needs
+# the CLI when SLAMKIT_BUILD_APPS=OFF, or one that links a disabled module (slamkit::report when
+# SLAMKIT_BUILD_REPORT=OFF). NAME is then an empty INTERFACE library, so the caller's own
+# follow-up lines (add_dependencies(NAME slamkit)) still configure.
 function(slamkit_test)
-  cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "NEEDS_CLI" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
   set(name ${ARG_NAME})
+  if(CMAKE_CURRENT_SOURCE_DIR STREQUAL "${PROJECT_SOURCE_DIR}/tests/apps")
+    set(ARG_NEEDS_CLI TRUE)
+  endif()
+  set(missing "")
+  if(ARG_NEEDS_CLI AND NOT TARGET slamkit)
+    set(missing "the slamkit program (SLAMKIT_BUILD_APPS=OFF)")
+  endif()
+  foreach(dep IN LISTS ARG_DEPS)
+    if(dep MATCHES "^slamkit::" AND NOT TARGET ${dep})
+      set(missing "${dep} (a disabled module)")
+    endif()
+  endforeach()
+  if(missing)
+    message(STATUS "slamkit: skipping test ${name}: it needs ${missing}")
+    add_library(${name} INTERFACE)
+    return()
+  endif()
+
   add_executable(${name})
   target_sources(${name} PRIVATE ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_compile_definitions(${name} PRIVATE
     SLAMKIT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    SLAMKIT_DATASETS_DIR="${PROJECT_SOURCE_DIR}/../shared/datasets"
-    SLAMKIT_CLI="$<TARGET_FILE:slamkit>")
+    SLAMKIT_DATASETS_DIR="${PROJECT_SOURCE_DIR}/../shared/datasets")
+  if(ARG_NEEDS_CLI)
+    target_compile_definitions(${name} PRIVATE SLAMKIT_CLI="$<TARGET_FILE:slamkit>")
+    add_dependencies(${name} slamkit)
+  endif()
   slamkit_target_options(${name})
   include(GoogleTest)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")

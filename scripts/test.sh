@@ -1,10 +1,22 @@
 #!/usr/bin/env bash
 # Sets everything up, then runs the whole test suite: the Release build, then a Debug build with
 # AddressSanitizer and UndefinedBehaviorSanitizer (tests labelled `slow` run in Release only).
+# Between the two, the Release tree is installed and examples/cpp is built against the install.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh release
 (cd build/release && ctest --output-on-failure -j "$(nproc)")
+# The installed package: install the Release tree into build/release/install, build examples/cpp
+# against it (find_package(slamkit)) and run both programs.
+prefix=$PWD/build/release/install
+cmake --install build/release --prefix "$prefix"
+cmake -S examples/cpp -B build/examples -G Ninja -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build build/examples -j "$(nproc)"
+for program in ekf_landmarks grid_laser; do
+  output=$(build/examples/$program)
+  printf '%s:\n%s\n' "$program" "$output"
+  grep -q "^final pose:" <<<"$output" || { echo "test: $program printed no final pose" >&2; exit 1; }
+done
 scripts/setup.sh asan
 (cd build/asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j "$(nproc)" -LE slow)
