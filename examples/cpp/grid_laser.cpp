@@ -6,8 +6,9 @@
 #include <cstdio>
 #include <limits>
 
+#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/rbpf_grid_slam.hpp"  // also brings LaserScan (models/ or core/)
+#include "slamkit/filters/rbpf_grid_slam.hpp"
 
 using namespace slamkit;
 
