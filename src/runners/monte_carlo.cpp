@@ -64,6 +64,9 @@ std::vector<LandmarkId> JoinWithTruth(const std::vector<ScanDecisions>& scans, i
                                       AssociationScorer& scorer) {
   std::vector<LandmarkId> landmark_truth(static_cast<std::size_t>(num_landmarks), kNoLandmark);
   for (const ScanDecisions& scan : scans) {
+    if (scan.true_ids->size() != scan.decisions.size()) {
+      throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
+    }
     for (std::size_t i = 0; i < scan.decisions.size(); ++i) {
       const AssociationDecision& d = scan.decisions[i];
       const LandmarkId true_id = (*scan.true_ids)[i];
@@ -113,7 +116,7 @@ RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
   SimInputs inputs = sim.inputs;
   if (known_association) CopyTrueIds(sim.truth, inputs);  // the only way a true id gets in
   const Trajectory& truth = sim.truth.poses;
-  if (truth.size() != inputs.steps.size() + 1) {
+  if (truth.size() != inputs.steps.size() + 1 || sim.truth.ids.size() != inputs.steps.size()) {
     throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
   }
   RunResult out;
