@@ -227,7 +227,10 @@ TEST_F(Figures, PathFigureDrawsEveryLayerInItsColour) {
   int blue = 0, red = 0, green = 0, black = 0;
   for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
     const std::uint8_t* p = &image.rgba[i];
-    blue += IsBlue(p), red += IsRed(p), green += IsGreen(p), black += IsBlack(p);
+    blue += IsBlue(p) ? 1 : 0;
+    red += IsRed(p) ? 1 : 0;
+    green += IsGreen(p) ? 1 : 0;
+    black += IsBlack(p) ? 1 : 0;
   }
   EXPECT_GT(blue, 300);   // the estimated path (a 2-px line around a 40 m × 16 m ellipse)
   EXPECT_GT(black, 300);  // the true path, the frame, the text
