@@ -79,12 +79,13 @@ int RunMonteCarloCommand(const McOptions& options) {
   params.runs = options.runs;
   params.seed = options.seed;
   params.threads = options.threads;
+  params.known_association = config.ekf.known_association;
   auto progress = std::make_shared<Progress>("runs", options.runs);
   params.progress = [progress](int done, int total) {
     (void)total;
     progress->Update(done);
   };
-  const MonteCarloResult mc = RunMonteCarlo(config, params);
+  const MonteCarloResult mc = RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
   const std::filesystem::path dir(options.out);
   std::filesystem::create_directories(dir);
   // Figures first: metrics.json is written last, so its presence means the run completed.

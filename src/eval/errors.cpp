@@ -23,14 +23,14 @@ PoseRmse ComputePoseRmse(std::span<const Eigen::Vector3d> errors) {
 }
 
 void AssociationScorer::Add(LandmarkId true_id, AssociationOutcome outcome,
-                            LandmarkId matched_source) {
+                            LandmarkId matched_true_id) {
   ++score_.sightings;
   const bool in_map = std::binary_search(mapped_ids_.begin(), mapped_ids_.end(), true_id);
   if (in_map) ++score_.matchable;
   switch (outcome) {
     case AssociationOutcome::kMatched:
       ++score_.matched;
-      if (matched_source == true_id) ++score_.correct;
+      if (matched_true_id == true_id) ++score_.correct;
       break;
     case AssociationOutcome::kNew:
       ++score_.created;

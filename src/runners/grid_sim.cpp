@@ -7,9 +7,12 @@ namespace slamkit {
 
 CarmenLog LogOfSimulatedRun(GridSimRun run) {
   CarmenLog log;
-  log.scans = std::move(run.scans);
+  log.scans = std::move(run.scans);  // run.truth stays out of the log
   log.odometry.reserve(log.scans.size());
-  for (const LaserScan& scan : log.scans) log.odometry.push_back({scan.t_s, scan.odometry});
+  for (LaserScan& scan : log.scans) {
+    scan.logged_pose = scan.odometry;  // what a raw log gives: never the true pose
+    log.odometry.push_back({scan.t_s, scan.odometry});
+  }
   return log;
 }
 

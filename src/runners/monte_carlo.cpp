@@ -4,12 +4,16 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <span>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <unordered_map>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "ekf_slam_adapter.hpp"
 #include "slamkit/eval/alignment.hpp"
 #include "slamkit/models/range_bearing.hpp"
 
@@ -17,6 +21,10 @@ namespace slamkit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// Run k's observation order is drawn from stream kObservationOrderStreams + k of the seed, far
+// from the noise streams 0, 1, ... of the runs.
+constexpr std::uint64_t kObservationOrderStreams = std::uint64_t{1} << 62;
 
 // Landmark error after the best rigid alignment of the estimated map onto the true one, pairing
 // each estimated landmark with the true landmark of the sighting that created it.
@@ -42,43 +50,102 @@ AssociationOutcome OutcomeOf(AssociationDecision::Kind kind) {
   return AssociationOutcome::kDropped;
 }
 
-void ScoreDecisions(const EkfSlam& slam, const std::vector<PointObservation>& observations,
-                    const std::vector<AssociationDecision>& decisions, AssociationScorer& scorer) {
-  for (std::size_t i = 0; i < decisions.size(); ++i) {
-    const AssociationDecision& d = decisions[i];
-    const LandmarkId matched =
-        d.kind == AssociationDecision::Kind::kMatched ? slam.LandmarkSourceId(d.landmark)
-                                                      : kNoLandmark;
-    scorer.Add(observations[i].id, OutcomeOf(d.kind), matched);
+// The filter's decisions on one scan beside the true ids of its sightings.
+struct ScanDecisions {
+  const std::vector<LandmarkId>* true_ids;
+  std::vector<AssociationDecision> decisions;
+};
+
+// Joins the filter's decisions with the truth, in filter order: each landmark's true id is that
+// of the sighting that created it, and each sighting is scored against the true id of the
+// landmark it matched. Returns the true id of each landmark (by index; kNoLandmark where no
+// decision created it).
+std::vector<LandmarkId> JoinWithTruth(const std::vector<ScanDecisions>& scans, int num_landmarks,
+                                      AssociationScorer& scorer) {
+  std::vector<LandmarkId> landmark_truth(static_cast<std::size_t>(num_landmarks), kNoLandmark);
+  for (const ScanDecisions& scan : scans) {
+    if (scan.true_ids->size() != scan.decisions.size()) {
+      throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
+    }
+    for (std::size_t i = 0; i < scan.decisions.size(); ++i) {
+      const AssociationDecision& d = scan.decisions[i];
+      const LandmarkId true_id = (*scan.true_ids)[i];
+      const bool names_landmark = d.kind != AssociationDecision::Kind::kDropped;
+      if (names_landmark && (d.landmark < 0 || d.landmark >= num_landmarks)) {
+        throw std::logic_error("RunLandmarkFilter: a decision names landmark " +
+                               std::to_string(d.landmark) + " of a map of " +
+                               std::to_string(num_landmarks));
+      }
+      if (d.kind == AssociationDecision::Kind::kNew) landmark_truth[d.landmark] = true_id;
+      const LandmarkId matched = d.kind == AssociationDecision::Kind::kMatched
+                                     ? landmark_truth[d.landmark]
+                                     : kNoLandmark;
+      scorer.Add(true_id, OutcomeOf(d.kind), matched);
+    }
   }
+  return landmark_truth;
+}
+
+std::vector<AssociationDecision> CheckedUpdate(LandmarkSlamFilter& filter,
+                                               std::span<const PointObservation> observations) {
+  std::vector<AssociationDecision> decisions = filter.Update(observations);
+  if (decisions.size() != observations.size()) {
+    throw std::logic_error("RunLandmarkFilter: " + std::to_string(decisions.size()) +
+                           " decisions for " + std::to_string(observations.size()) +
+                           " observations");
+  }
+  return decisions;
 }
 
 }  // namespace
 
-RunResult RunEkfSlamOnce(const ScenarioConfig& config, const LandmarkWorld& world, Rng& rng) {
-  const ScenarioParams& scenario = config.scenario;
-  const SimRun sim = Simulate(scenario, world, rng);
-  EkfSlam slam(config.ekf, MakeMotionModel(scenario.vehicle),
-               std::make_unique<RangeBearingModel>(scenario.sensor));
-  slam.Reset(sim.initial_pose);
-  RunResult out;
-  AssociationScorer scorer;
-  ScoreDecisions(slam, sim.initial_observations, slam.Update(sim.initial_observations), scorer);
-  out.truth.push_back({0.0, sim.initial_pose});
-  out.estimate.push_back({0.0, slam.pose()});
-  for (const SimStep& step : sim.steps) {
-    const auto start = Clock::now();
-    slam.Predict(step.control, scenario.dt_s);
-    const auto decisions = slam.Update(step.observations);
-    out.step_time_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
-    ScoreDecisions(slam, step.observations, decisions, scorer);
-    const Eigen::Vector3d e = PoseError(slam.pose(), step.true_pose);
-    out.errors.push_back(e);
-    out.nees.push_back(Nees(e, slam.PoseCovariance()));
-    out.truth.push_back({step.t_s, step.true_pose});
-    out.estimate.push_back({step.t_s, slam.pose()});
+LandmarkFilterFactory EkfSlamFactory(const EkfSlamParams& ekf, const VehicleParams& vehicle,
+                                     const RangeBearingParams& sensor) {
+  return [ekf, vehicle, sensor]() -> std::unique_ptr<LandmarkSlamFilter> {
+    return std::make_unique<EkfSlamAdapter>(ekf, MakeMotionModel(vehicle),
+                                            std::make_unique<RangeBearingModel>(sensor));
+  };
+}
+
+LandmarkFilterFactory EkfSlamFactory(const ScenarioConfig& config) {
+  return EkfSlamFactory(config.ekf, config.scenario.vehicle, config.scenario.sensor);
+}
+
+RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
+                            const LandmarkWorld& world, double dt_s, bool known_association) {
+  SimInputs inputs = sim.inputs;
+  if (known_association) CopyTrueIds(sim.truth, inputs);  // the only way a true id gets in
+  const Trajectory& truth = sim.truth.poses;
+  if (truth.size() != inputs.steps.size() + 1 || sim.truth.ids.size() != inputs.steps.size()) {
+    throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
   }
-  out.map = slam.Map();
+  RunResult out;
+  std::vector<ScanDecisions> scans;
+  scans.reserve(inputs.steps.size() + 1);
+  filter.Reset(inputs.initial_pose, Eigen::Matrix3d::Zero());
+  scans.push_back({&sim.truth.initial_ids, CheckedUpdate(filter, inputs.initial_observations)});
+  out.estimate.push_back({0.0, filter.PoseEstimate()});
+  for (std::size_t k = 0; k < inputs.steps.size(); ++k) {
+    const SimStep& step = inputs.steps[k];
+    const auto start = Clock::now();
+    filter.Predict(step.control, dt_s);
+    scans.push_back({&sim.truth.ids[k], CheckedUpdate(filter, step.observations)});
+    out.step_time_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    const Pose2 estimate = filter.PoseEstimate();
+    const Eigen::Vector3d e = PoseError(estimate, truth[k + 1].pose);
+    out.errors.push_back(e);
+    out.nees.push_back(Nees(e, filter.PoseCovariance()));
+    out.estimate.push_back({step.t_s, estimate});
+  }
+  out.truth = truth;
+  // After the run: join the filter's outputs with the truth.
+  out.map = filter.Map();
+  AssociationScorer scorer;
+  const std::vector<LandmarkId> landmark_truth =
+      JoinWithTruth(scans, static_cast<int>(out.map.landmarks.size()), scorer);
+  for (std::size_t i = 0; i < out.map.landmarks.size(); ++i) {
+    out.map.landmarks[i].source_id = landmark_truth[i];
+  }
   out.rmse = ComputePoseRmse(out.errors);
   out.map_rmse_m = AlignedMapRmse(out.map, world);
   out.association = scorer.score();
@@ -120,6 +187,7 @@ void Aggregate(MonteCarloResult& mc) {
     }
     time_count += r.step_time_s.size();
     mapped += static_cast<double>(r.map.landmarks.size());
+    mc.map_rmse_mean_m += r.map_rmse_m / runs;
     AddScore(mc.association, r.association);
   }
   int inside = 0;
@@ -137,9 +205,11 @@ void Aggregate(MonteCarloResult& mc) {
 
 }  // namespace
 
-MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, const MonteCarloParams& params) {
-  const ScenarioParams& scenario = config.scenario;
+MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
+                               const LandmarkFilterFactory& make_filter,
+                               const MonteCarloParams& params) {
   if (params.runs < 1) throw std::invalid_argument("RunMonteCarlo: runs must be >= 1");
+  if (!make_filter) throw std::invalid_argument("RunMonteCarlo: no filter factory");
   MonteCarloResult mc;
   mc.world = MakeWorld(scenario.world);
   mc.runs.resize(params.runs);
@@ -151,8 +221,13 @@ MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, const MonteCarloPar
   tbb::task_arena arena(std::max(threads, 1));
   arena.execute([&] {
     tbb::parallel_for(0, params.runs, [&](int k) {
-      Rng rng = Rng::ForStream(params.seed, static_cast<std::uint64_t>(k));
-      mc.runs[k] = RunEkfSlamOnce(config, mc.world, rng);
+      const auto run = static_cast<std::uint64_t>(k);
+      Rng noise_rng = Rng::ForStream(params.seed, run);
+      Rng order_rng = Rng::ForStream(params.seed, kObservationOrderStreams + run);
+      const SimRun sim = Simulate(scenario, mc.world, noise_rng, order_rng);
+      const std::unique_ptr<LandmarkSlamFilter> filter = make_filter();
+      mc.runs[k] =
+          RunLandmarkFilter(*filter, sim, mc.world, scenario.dt_s, params.known_association);
       const std::lock_guard lock(progress_mutex);
       ++finished;
       if (params.progress) params.progress(finished, params.runs);
@@ -162,6 +237,11 @@ MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, const MonteCarloPar
   for (std::size_t i = 1; i < truth.size(); ++i) mc.t_s.push_back(truth[i].t_s);  // [0]: start
   Aggregate(mc);
   return mc;
+}
+
+MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, MonteCarloParams params) {
+  params.known_association = config.ekf.known_association;
+  return RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
 }
 
 }  // namespace slamkit

@@ -103,7 +103,7 @@ GridSimRun SimulateGridRun(const FloorPlan& plan, const GridSimParams& params, c
     LaserScan scan = ScanWith(caster, truth, params.laser, rng);
     scan.t_s = t_s;
     scan.odometry = odometry;
-    scan.logged_pose = truth;
+    scan.logged_pose = odometry;  // as in a raw log: the truth goes beside, in run.truth
     run.scans.push_back(std::move(scan));
     run.truth.push_back({t_s, truth});
     if (k >= params.max_steps) break;

@@ -7,13 +7,17 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <numbers>
 #include <stdexcept>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include "slamkit/core/rng.hpp"
 
@@ -49,6 +53,96 @@ PngSize ReadPngSize(const fs::path& path) {
 std::string ReadText(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A decoded image, 8-bit RGBA, rows from the top.
+struct RgbaImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+  std::uint32_t At(int x, int y) const {
+    const std::uint8_t* p = &rgba[4 * (static_cast<std::size_t>(y) * width + x)];
+    return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
+           std::uint32_t{p[3]};
+  }
+};
+
+RgbaImage ReadPng(const fs::path& path) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&png, path.c_str())) {
+    ADD_FAILURE() << path << ": " << png.message;
+    return {};
+  }
+  png.format = PNG_FORMAT_RGBA;
+  RgbaImage image;
+  image.width = static_cast<int>(png.width);
+  image.height = static_cast<int>(png.height);
+  image.rgba.resize(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr)) {
+    ADD_FAILURE() << path << ": " << png.message;
+    png_image_free(&png);
+    return {};
+  }
+  return image;
+}
+
+void WritePng(const fs::path& path, const RgbaImage& image) {
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width);
+  png.height = static_cast<png_uint_32>(image.height);
+  png.format = PNG_FORMAT_RGBA;
+  ASSERT_TRUE(png_image_write_to_file(&png, path.c_str(), 0, image.rgba.data(), 0, nullptr))
+      << png.message;
+}
+
+RgbaImage Filled(int width, int height, std::array<std::uint8_t, 4> colour) {
+  RgbaImage image{width, height, {}};
+  for (int i = 0; i < width * height; ++i) {
+    image.rgba.insert(image.rgba.end(), colour.begin(), colour.end());
+  }
+  return image;
+}
+
+// Why `image` is not a drawn figure, or "" if it looks like one: a figure has several distinct
+// colours (lines, markers, text, anti-aliasing) and at least 1 % of its pixels differ from the
+// background (its most common colour).
+std::string NotADrawnFigure(const RgbaImage& image) {
+  if (image.width == 0 || image.height == 0) return "no pixels";
+  std::map<std::uint32_t, int> count;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) ++count[image.At(x, y)];
+  }
+  if (count.size() < 8) return std::to_string(count.size()) + " distinct colours";
+  int background = 0;
+  for (const auto& [colour, n] : count) background = std::max(background, n);
+  const int total = image.width * image.height;
+  if (total - background < total / 100) {
+    return std::to_string(total - background) + " of " + std::to_string(total) +
+           " pixels drawn";
+  }
+  return "";
+}
+
+// Strongly blue, red, green or near-black pixels: the pens "b", "r", "g" and "k" of the figures.
+bool IsBlue(const std::uint8_t* p) { return p[2] > 180 && p[0] < 90 && p[1] < 90; }
+bool IsRed(const std::uint8_t* p) { return p[0] > 180 && p[1] < 90 && p[2] < 90; }
+bool IsGreen(const std::uint8_t* p) { return p[1] > 150 && p[0] < 90 && p[2] < 90; }
+bool IsBlack(const std::uint8_t* p) { return p[0] < 40 && p[1] < 40 && p[2] < 40; }
+
+// Pixels of a colour in each horizontal third of the image (top, middle, bottom): the rows of
+// the consistency figure's three panels (ANEES, position RMSE, heading RMSE).
+std::array<int, 3> PerThird(const RgbaImage& image, bool (*is)(const std::uint8_t*)) {
+  std::array<int, 3> n{};
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (is(&image.rgba[4 * (static_cast<std::size_t>(y) * image.width + x)])) {
+        ++n[std::min(2, 3 * y / image.height)];
+      }
+    }
+  }
+  return n;
 }
 
 PathFigureData SamplePathData(int landmarks) {
@@ -108,6 +202,67 @@ TEST_F(Figures, PathFigureWritesPngOfRequestedSizeAndSvg) {
   WritePathFigure(dir_ / "map.svg", data);
   EXPECT_NE(ReadText(dir_ / "map.svg").find("<svg"), std::string::npos);
   EXPECT_EQ(FilesInDir(), 2);  // no temporaries left behind
+}
+
+TEST_F(Figures, DrawnFigureCheckRejectsBlankAndSingleColourImages) {
+  WritePng(dir_ / "white.png", Filled(640, 480, {255, 255, 255, 255}));
+  WritePng(dir_ / "grey.png", Filled(640, 480, {90, 90, 90, 255}));
+  RgbaImage dot = Filled(640, 480, {255, 255, 255, 255});
+  for (int i = 0; i < 12; ++i) dot.rgba[4 * (i * 641)] = static_cast<std::uint8_t>(20 * i);
+  WritePng(dir_ / "dots.png", dot);
+  for (const char* name : {"white.png", "grey.png", "dots.png"}) {
+    const RgbaImage image = ReadPng(dir_ / name);
+    EXPECT_EQ(image.width, 640);
+    EXPECT_NE(NotADrawnFigure(image), "") << name;
+    EXPECT_EQ(PerThird(image, IsBlue), (std::array<int, 3>{0, 0, 0})) << name;
+  }
+}
+
+TEST_F(Figures, PathFigureDrawsEveryLayerInItsColour) {
+  WritePathFigure(dir_ / "map.png", SamplePathData(40));
+  const RgbaImage image = ReadPng(dir_ / "map.png");
+  ASSERT_EQ(image.width, 640);
+  ASSERT_EQ(image.height, 480);
+  EXPECT_EQ(NotADrawnFigure(image), "");
+  int blue = 0, red = 0, green = 0, black = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+    const std::uint8_t* p = &image.rgba[i];
+    blue += IsBlue(p) ? 1 : 0;
+    red += IsRed(p) ? 1 : 0;
+    green += IsGreen(p) ? 1 : 0;
+    black += IsBlack(p) ? 1 : 0;
+  }
+  EXPECT_GT(blue, 300);   // the estimated path (a 2-px line around a 40 m × 16 m ellipse)
+  EXPECT_GT(black, 300);  // the true path, the frame, the text
+  EXPECT_GT(red, 40);     // 40 estimated landmarks and their ellipses
+  EXPECT_GT(green, 40);   // 40 true landmarks
+}
+
+// The data are drawn where they belong: each series lands in its own panel's third of the image,
+// and a missing series leaves its panel without a line.
+TEST_F(Figures, ConsistencyFigureDrawsEachSeriesInItsPanel) {
+  const ConsistencyFigureData data = SampleConsistencyData();
+  WriteConsistencyFigure(dir_ / "all.png", data);
+  const RgbaImage all = ReadPng(dir_ / "all.png");
+  EXPECT_EQ(NotADrawnFigure(all), "");
+  const std::array<int, 3> blue = PerThird(all, IsBlue);
+  for (int panel = 0; panel < 3; ++panel) EXPECT_GT(blue[panel], 200) << "panel " << panel;
+  const std::array<int, 3> red = PerThird(all, IsRed);  // the ANEES band's dashed lines
+  EXPECT_GT(red[0], 200);
+  EXPECT_EQ(red[1] + red[2], 0);
+
+  ConsistencyFigureData position_only = data;
+  position_only.anees.clear();
+  position_only.heading_rmse_rad.clear();
+  position_only.band_lo = position_only.band_hi = 0.0;
+  WriteConsistencyFigure(dir_ / "position.png", position_only);
+  const RgbaImage position = ReadPng(dir_ / "position.png");
+  EXPECT_EQ(NotADrawnFigure(position), "");
+  const std::array<int, 3> only = PerThird(position, IsBlue);
+  EXPECT_EQ(only[0], 0);
+  EXPECT_GT(only[1], 200);
+  EXPECT_EQ(only[2], 0);
+  EXPECT_EQ(PerThird(position, IsRed), (std::array<int, 3>{0, 0, 0}));
 }
 
 TEST_F(Figures, PathFigureWithoutTruthOrLandmarks) {

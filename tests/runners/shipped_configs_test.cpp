@@ -17,17 +17,18 @@ ScenarioConfig Load(const char* name) {
 }
 
 int SensorSteps(const SimRun& run) {
-  return static_cast<int>(std::count_if(run.steps.begin(), run.steps.end(),
+  const std::vector<SimStep>& steps = run.inputs.steps;
+  return static_cast<int>(std::count_if(steps.begin(), steps.end(),
                                         [](const SimStep& s) { return !s.observations.empty(); }));
 }
 
 // The closest the true trajectory came to each waypoint.
 std::vector<double> ClosestApproach(const SimRun& run, const RouteParams& route) {
   std::vector<double> closest(route.waypoints_m.size(), 1e9);
-  for (const SimStep& step : run.steps) {
+  for (const StampedPose& truth : run.truth.poses) {
     for (std::size_t w = 0; w < closest.size(); ++w) {
       closest[w] =
-          std::min(closest[w], (route.waypoints_m[w] - step.true_pose.translation()).norm());
+          std::min(closest[w], (route.waypoints_m[w] - truth.pose.translation()).norm());
     }
   }
   return closest;
@@ -57,11 +58,11 @@ TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_GE(world.landmarks.size(), 60u);
   EXPECT_LE(world.landmarks.size(), 100u);
-  Rng rng(1);
-  const SimRun run = Simulate(s, world, rng);
-  EXPECT_LT(run.steps.size(), 5000u);
+  Rng rng(1), order(1);
+  const SimRun run = Simulate(s, world, rng, order);
+  EXPECT_LT(run.inputs.steps.size(), 5000u);
   for (double d : ClosestApproach(run, s.route)) EXPECT_LE(d, s.route.switch_distance_m);
-  EXPECT_LE((run.steps.back().true_pose.translation() - s.route.waypoints_m[0]).norm(),
+  EXPECT_LE((run.truth.poses.back().pose.translation() - s.route.waypoints_m[0]).norm(),
             s.route.switch_distance_m);
   EXPECT_GT(SensorSteps(run), 400);
 }
@@ -76,18 +77,19 @@ TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
   for (const Landmark& l : world.landmarks) {
     EXPECT_TRUE((l.position_m.array() >= -5.0).all() && (l.position_m.array() <= 25.0).all());
   }
-  Rng rng(1);
-  const SimRun run = Simulate(s, world, rng);
-  EXPECT_EQ(run.steps.size(), 1000u);
+  Rng rng(1), order(1);
+  const SimRun run = Simulate(s, world, rng, order);
+  EXPECT_EQ(run.inputs.steps.size(), 1000u);
   EXPECT_EQ(SensorSteps(run), 1000);
   // One lap: every corner reached, and back at the start after the last one.
   const std::vector<double> closest = ClosestApproach(run, s.route);
   for (double d : closest) EXPECT_LE(d, s.route.switch_distance_m);
+  const Trajectory& truth = run.truth.poses;  // truth[k + 1] is after step k
   const auto back_home =
-      std::find_if(run.steps.begin() + 700, run.steps.end(), [&](const SimStep& st) {
-        return st.true_pose.translation().norm() <= s.route.switch_distance_m;
+      std::find_if(truth.begin() + 701, truth.end(), [&](const StampedPose& p) {
+        return p.pose.translation().norm() <= s.route.switch_distance_m;
       });
-  EXPECT_NE(back_home, run.steps.end());
+  EXPECT_NE(back_home, truth.end());
 }
 
 TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
@@ -97,16 +99,16 @@ TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_EQ(world.landmarks.size(), 30u);
   EXPECT_GT(MinSpacing(world), 5.0);
-  Rng rng(1);
-  const SimRun run = Simulate(s, world, rng);
-  EXPECT_LT(run.steps.size(), 1500u);
+  Rng rng(1), order(1);
+  const SimRun run = Simulate(s, world, rng, order);
+  EXPECT_LT(run.inputs.steps.size(), 1500u);
   EXPECT_GE(SensorSteps(run), 130);
   EXPECT_LE(SensorSteps(run), 170);
   for (double d : ClosestApproach(run, s.route)) EXPECT_LE(d, s.route.switch_distance_m);
   // The route keeps clear of the landmarks (no near-zero ranges).
-  for (const SimStep& step : run.steps) {
+  for (const StampedPose& truth : run.truth.poses) {
     for (const Landmark& l : world.landmarks) {
-      EXPECT_GT((l.position_m - step.true_pose.translation()).norm(), 4.0);
+      EXPECT_GT((l.position_m - truth.pose.translation()).norm(), 4.0);
     }
   }
 }

@@ -19,9 +19,9 @@ struct PoseRmse {
 };
 PoseRmse ComputePoseRmse(std::span<const Eigen::Vector3d> errors);
 
-// How nearest-neighbour association did against the truth carried by the observations.
-// A sighting is matchable when its true landmark was already in the map; a match is correct when
-// the landmark it matched was created from a sighting of the same true landmark.
+// How a filter's association did against the truth, joined after the run (the filter never sees
+// the true ids). A sighting is matchable when its true landmark was already in the map; a match
+// is correct when the landmark it matched was created from a sighting of the same true landmark.
 struct AssociationScore {
   int sightings = 0;
   int matched = 0;
@@ -36,12 +36,14 @@ struct AssociationScore {
 // What a filter did with one sighting (the filters' AssociationDecision::Kind, seen from here).
 enum class AssociationOutcome { kMatched, kNew, kDropped };
 
-// Accumulates AssociationScore one decision at a time, in filter order.
+// Accumulates AssociationScore one decision at a time, in filter order, from plain data.
 class AssociationScorer {
  public:
-  // `true_id` is the sighting's true landmark; `matched_source` the true id of the landmark it
-  // was matched to (ignored unless the outcome is a match).
-  void Add(LandmarkId true_id, AssociationOutcome outcome, LandmarkId matched_source);
+  // `true_id` is the sighting's true landmark, `outcome` what the filter did with it and
+  // `matched_true_id` the true id of the landmark it was matched to (ignored unless the outcome
+  // is a match). A landmark's true id is the caller's to decide: the harness takes that of the
+  // sighting that created it.
+  void Add(LandmarkId true_id, AssociationOutcome outcome, LandmarkId matched_true_id);
   const AssociationScore& score() const { return score_; }
 
  private:

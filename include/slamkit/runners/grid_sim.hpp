@@ -13,8 +13,8 @@ namespace slamkit {
 // SPEC S4's grid SLAM in simulation: a robot driven through a floor plan (SimulateGridRun), its
 // scans fed to RbpfGridSlam as if read from a CARMEN log, and the result compared with the truth.
 
-// The run as a CARMEN log: the scans as they are (odometry = the noisy odometry, logged_pose =
-// the truth) and one ODOM record per scan.
+// The run's inputs as a CARMEN log: the scans as they are (odometry and logged_pose both the
+// noisy odometry; the truth is not copied in) and one ODOM record per scan.
 CarmenLog LogOfSimulatedRun(GridSimRun run);
 
 struct GridSimResult {

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -9,31 +10,54 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/consistency.hpp"
 #include "slamkit/eval/errors.hpp"
+#include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/runners/scenario_config.hpp"
 
 namespace slamkit {
 
-// One EKF-SLAM run on a simulated scenario, with its errors against the truth.
+// The evaluation harness of every point-landmark SLAM filter: it drives a LandmarkSlamFilter
+// over simulated runs through that interface only, then joins the filter's outputs with the
+// truth the simulator returned beside its inputs.
+
+// Builds a fresh filter for one run. Called once per run, from several threads at once.
+using LandmarkFilterFactory = std::function<std::unique_ptr<LandmarkSlamFilter>()>;
+
+// EKF-SLAM with `ekf`, the motion model of `vehicle` (its noise is the filter's Q) and the
+// range-bearing sensor `sensor`.
+LandmarkFilterFactory EkfSlamFactory(const EkfSlamParams& ekf, const VehicleParams& vehicle,
+                                     const RangeBearingParams& sensor);
+// The default of the command line: the scenario file's `ekf` section with its vehicle and sensor.
+LandmarkFilterFactory EkfSlamFactory(const ScenarioConfig& config);
+
+// One filter run on a simulated scenario, with its errors against the truth.
 struct RunResult {
   Trajectory truth;
   Trajectory estimate;
   std::vector<Eigen::Vector3d> errors;  // estimate ⊖ truth per step
   std::vector<double> nees;             // pose NEES per step (3 DoF)
   std::vector<double> step_time_s;      // wall time of predict + update per step
+  // The filter's map, with each landmark's source_id set by the harness to the true id of the
+  // sighting that created it (kNoLandmark if the harness saw no sighting create it).
   LandmarkMap map;
   PoseRmse rmse;
   double map_rmse_m = 0.0;              // landmark error after the best rigid alignment
   AssociationScore association;
 };
 
-// Runs EKF-SLAM once over a simulated run of `scenario` in `world`, drawing noise from `rng`.
-RunResult RunEkfSlamOnce(const ScenarioConfig& config, const LandmarkWorld& world, Rng& rng);
+// Runs `filter` once over `sim`'s inputs (the true ids copied into the observations only with
+// `known_association`), steps of `dt_s`, then scores it against `sim`'s truth and `world`.
+// Throws std::logic_error if the filter breaks the interface (a decision count that differs from
+// the observation count, a created landmark outside its map).
+RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
+                            const LandmarkWorld& world, double dt_s, bool known_association);
 
 struct MonteCarloParams {
   int runs = 50;
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all hardware threads
+  // Give the filter the simulator's true landmark ids with each observation.
+  bool known_association = false;
   // Called after each finished run with (finished, total), from worker threads one at a time.
   std::function<void(int, int)> progress;
 };
@@ -52,13 +76,22 @@ struct MonteCarloResult {
   double anees_fraction_in_band = 0.0;  // share of steps whose ANEES is inside the band
   PoseRmse rmse;                        // over all runs and steps
   double landmarks_mapped_mean = 0.0;
+  double map_rmse_mean_m = 0.0;         // mean over runs
   double step_time_mean_s = 0.0;
   double step_time_max_s = 0.0;
   AssociationScore association;         // summed over runs
 };
 
-// Runs `params.runs` independent runs in parallel. Run k draws from Rng::ForStream(seed, k), so the
-// result is identical for any thread count (wall times aside).
-MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, const MonteCarloParams& params);
+// Runs `params.runs` independent runs of `scenario` in parallel, each on a filter from
+// `make_filter`. Run k simulates with noise from Rng::ForStream(seed, k) and observation order
+// from another stream of the same seed, so the result is identical for any thread count (wall
+// times aside).
+MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
+                               const LandmarkFilterFactory& make_filter,
+                               const MonteCarloParams& params);
+
+// The same with EkfSlamFactory(config); known association as config.ekf says (it replaces
+// params.known_association, so that the EKF and the harness agree).
+MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, MonteCarloParams params);
 
 }  // namespace slamkit

@@ -44,11 +44,14 @@ struct GridSimParams {
   LaserSimParams laser;
 };
 
+// A simulated laser run as two streams: what the filter receives (the scans, as a raw CARMEN log
+// gives them) and, beside it, the truth.
 struct GridSimRun {
   // Scan k is taken at t_s = k·dt_s (scan 0 at the start pose): `odometry` is the noisy odometry
-  // (in a frame that coincides with the world at the start), `logged_pose` the true pose.
+  // (in a frame that coincides with the world at the start) and `logged_pose` the same odometry,
+  // as in a raw (uncorrected) log. Neither is the true pose.
   std::vector<LaserScan> scans;
-  Trajectory truth;  // the true pose at each scan's time
+  Trajectory truth;  // the true pose at each scan's time, parallel to `scans`
 };
 
 // Drives the route with WaypointController from `start`, drawing all noise from `rng` (so a seed
