@@ -3,11 +3,11 @@
 function(slamkit_target_options target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror -Wpedantic)
   if(SLAMKIT_NATIVE)
-    # Eigen's kernels are where the EKF spends its time; with AVX2/AVX-512 and FMA the covariance
+    # Eigen's kernels are where the EKF spends its time; with AVX2 and FMA the covariance
     # downdate runs 2-3x faster than with the SSE2 baseline. PRIVATE on purpose: an installed
     # package must not impose -march=native on the code that links it (build the package with
     # SLAMKIT_NATIVE=OFF to run it on any x86-64; slamkitConfig.cmake reports slamkit_NATIVE).
-    target_compile_options(${target} PRIVATE -march=native)
+    target_compile_options(${target} PRIVATE ${SLAMKIT_NATIVE_FLAGS})
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
       # GCC 12 reports these inside Eigen's AVX packet code on fixed-size objects (false
       # positives: the ASan/UBSan build checks the same code at run time).
