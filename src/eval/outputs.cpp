@@ -63,7 +63,7 @@ nlohmann::json MonteCarloMetrics(const ScenarioParams& scenario, const MonteCarl
   for (const RunResult& r : mc.runs) map_rmse += r.map_rmse_m / double(mc.runs.size());
   return {{"scenario", scenario.name},
           {"motion_model", ToString(scenario.vehicle.kind)},
-          {"known_association", scenario.ekf.known_association},
+          {"known_association", scenario.ekf.known_association()},
           {"runs", params.runs},
           {"seed", params.seed},
           {"steps", mc.t_s.size()},
@@ -98,7 +98,7 @@ void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::js
 }
 
 nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) {
-  return {{"known_association", params.ekf.known_association},
+  return {{"known_association", params.ekf.known_association()},
           {"poses", r.estimate.size()},
           {"sightings", r.sightings},
           {"dropped", r.dropped},

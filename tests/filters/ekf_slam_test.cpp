@@ -118,7 +118,7 @@ TEST(EkfSlam, EqualsKalmanFilterOnLinearGaussianCase) {
   odo.sigma_xy_m = 0.1;
   odo.sigma_theta_rad = 0.0;
   EkfSlamParams params;
-  params.known_association = true;
+  params.association_method = AssociationMethod::kKnown;
   EkfSlam slam(params, std::make_unique<OdometryModel>(odo), std::make_unique<RelativePointModel>());
   slam.Reset(Pose2(), Eigen::Vector3d(0.2, 0.3, 0.0).asDiagonal());
 
@@ -179,7 +179,8 @@ TEST(EkfSlam, EqualsKalmanFilterOnLinearGaussianCase) {
 TEST(EkfSlam, KnownAssociationUsesIdsAndUnknownFindsThem) {
   for (const bool known : {true, false}) {
     EkfSlamParams params;
-    params.known_association = known;
+    params.association_method =
+        known ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
     EkfSlam slam(params, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>());
     slam.Reset(Pose2(), Eigen::Matrix3d::Identity() * 1e-6);
     const std::vector<PointObservation> first = {RangeBearingObs(5.0, 0.3, 10),

@@ -128,7 +128,7 @@ TEST_F(ScenarioConfig, EverySensorAndEkfKeyReachesItsField) {
   EXPECT_EQ(p.sensor.sigma_range_m, 0.2);
   EXPECT_DOUBLE_EQ(p.sensor.sigma_bearing_rad, DegToRad(2));
   EXPECT_EQ(p.sensor_period_steps, 3);
-  EXPECT_TRUE(p.ekf.known_association);
+  EXPECT_TRUE(p.ekf.known_association());
   EXPECT_EQ(p.ekf.association.gate_chi2, 5.99);
   EXPECT_EQ(p.ekf.association.new_landmark_chi2, 20.0);
   EXPECT_EQ(p.ekf.association_margin_m, 2.0);

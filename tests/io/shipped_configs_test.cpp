@@ -52,7 +52,7 @@ TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
   EXPECT_EQ(s.sensor_period_steps, 8);
   EXPECT_DOUBLE_EQ(s.sensor.fov_rad, DegToRad(180.0));
   EXPECT_DOUBLE_EQ(s.sensor.sigma_bearing_rad, DegToRad(1.0));
-  EXPECT_FALSE(s.ekf.known_association);
+  EXPECT_FALSE(s.ekf.known_association());
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_GE(world.landmarks.size(), 60u);
   EXPECT_LE(world.landmarks.size(), 100u);
@@ -68,7 +68,7 @@ TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
 TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
   const ScenarioParams s = Load("square_400.yaml");
   EXPECT_EQ(s.vehicle.kind, MotionKind::kOdometry);
-  EXPECT_TRUE(s.ekf.known_association);
+  EXPECT_TRUE(s.ekf.known_association());
   const LandmarkWorld world = MakeWorld(s.world);
   ASSERT_EQ(world.landmarks.size(), 400u);
   for (const Landmark& l : world.landmarks) {
@@ -90,7 +90,7 @@ TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
 
 TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
   const ScenarioParams s = Load("short.yaml");
-  EXPECT_TRUE(s.ekf.known_association);
+  EXPECT_TRUE(s.ekf.known_association());
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_EQ(world.landmarks.size(), 30u);
   EXPECT_GT(MinSpacing(world), 5.0);
