@@ -1,10 +1,10 @@
 #include "slamkit/filters/block_ekf.hpp"
 
-#include <algorithm>
-#include <stdexcept>
+#include <tbb/parallel_for.h>
 
 #include <Eigen/Cholesky>
-#include <tbb/parallel_for.h>
+#include <algorithm>
+#include <stdexcept>
 
 #include "slamkit/core/angle.hpp"
 

@@ -68,17 +68,13 @@ Eigen::Matrix<double, Eigen::Dynamic, kZ> BlockEkf::CovarianceTimesHt(
   return PHt;
 }
 
-// SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time). With S = L Lᵀ
-// the covariance update is the symmetric rank-kZ downdate P ← P − V Vᵀ, V = P Hᵀ L⁻ᵀ, and the
-// mean moves by K ν = V L⁻¹ ν; V joins the deferred factor U.
+// S = H (P Hᵀ) + R, reusing the P Hᵀ the update computed anyway.
 template <int kZ>
-bool BlockEkf::UpdateFixed(const Linearisation& obs) {
-  using MatrixZ = Eigen::Matrix<double, kZ, kZ>;
-  if (m_ == 0) StartPoseCache();
-  const Eigen::Matrix<double, Eigen::Dynamic, kZ> PHt = CovarianceTimesHt<kZ>(obs);
+Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFromPHt(
+    const Linearisation& obs, const Eigen::Matrix<double, Eigen::Dynamic, kZ>& PHt) const {
   const std::span<const BlockJacobian> H = obs.H.view();
-  const MatrixZ R = obs.R;
-  MatrixZ S;
+  const Eigen::Matrix<double, kZ, kZ> R = obs.R;
+  Eigen::Matrix<double, kZ, kZ> S;
   if (H.size() == 2) {
     WithDim(BlockDim(H[0].block), [&](auto D0) {
       WithDim(BlockDim(H[1].block), [&](auto D1) {
@@ -89,16 +85,28 @@ bool BlockEkf::UpdateFixed(const Linearisation& obs) {
             J_1 * PHt.template middleRows<kD1>(BlockOffset(H[1].block)) + R;
       });
     });
-  } else {
-    S = R;
-    for (const BlockJacobian& h : H) {
-      WithDim(BlockDim(h.block), [&](auto D) {
-        constexpr int kD = decltype(D)::value;
-        const Eigen::Matrix<double, kZ, kD> J = h.J;
-        S += J * PHt.template middleRows<kD>(BlockOffset(h.block));
-      });
-    }
+    return S;
   }
+  S = R;
+  for (const BlockJacobian& h : H) {
+    WithDim(BlockDim(h.block), [&](auto D) {
+      constexpr int kD = decltype(D)::value;
+      const Eigen::Matrix<double, kZ, kD> J = h.J;
+      S += J * PHt.template middleRows<kD>(BlockOffset(h.block));
+    });
+  }
+  return S;
+}
+
+// SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time). With S = L Lᵀ
+// the covariance update is the symmetric rank-kZ downdate P ← P − V Vᵀ, V = P Hᵀ L⁻ᵀ, and the
+// mean moves by K ν = V L⁻¹ ν; V joins the deferred factor U.
+template <int kZ>
+bool BlockEkf::UpdateFixed(const Linearisation& obs) {
+  using MatrixZ = Eigen::Matrix<double, kZ, kZ>;
+  if (m_ == 0) StartPoseCache();
+  const Eigen::Matrix<double, Eigen::Dynamic, kZ> PHt = CovarianceTimesHt<kZ>(obs);
+  const MatrixZ S = InnovationCovarianceFromPHt<kZ>(obs, PHt);
   const Eigen::LLT<MatrixZ> llt(S);
   if (llt.info() != Eigen::Success) return false;  // never for R > 0; guard anyway
   const MatrixZ L_inv_t = llt.matrixL().solve(MatrixZ::Identity()).transpose();
@@ -136,9 +144,12 @@ Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearis
         constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
         const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
         const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
-        const Eigen::Matrix<double, kD0, kD0> P_00 = CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
-        const Eigen::Matrix<double, kD0, kD1> P_01 = CurrentBlockOf<kD0, kD1>(H[0].block, H[1].block);
-        const Eigen::Matrix<double, kD1, kD1> P_11 = CurrentBlockOf<kD1, kD1>(H[1].block, H[1].block);
+        const Eigen::Matrix<double, kD0, kD0> P_00 =
+            CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
+        const Eigen::Matrix<double, kD0, kD1> P_01 =
+            CurrentBlockOf<kD0, kD1>(H[0].block, H[1].block);
+        const Eigen::Matrix<double, kD1, kD1> P_11 =
+            CurrentBlockOf<kD1, kD1>(H[1].block, H[1].block);
         const MatrixZ cross = J_0 * P_01 * J_1.transpose();
         S = J_0 * P_00 * J_0.transpose() + cross + cross.transpose() +
             J_1 * P_11 * J_1.transpose() + R;
@@ -189,6 +200,29 @@ Eigen::MatrixXd BlockEkf::JointInnovationCovariance(std::span<const Linearisatio
   return S;
 }
 
+// The new block's cross-covariances with the poses, Σ_j J_j P_jp, as rows of the cached pose
+// columns (the stored column is current too, but the cache is what later updates read).
+template <int kD>
+void BlockEkf::CachePoseRowsOfNewBlock(std::span<const BlockJacobian> J_new_blocks) {
+  for (const int p : pose_blocks_) {
+    auto rows = pose_cols_.block<kD, 3>(n_, 3 * pose_slot_[p]);
+    for (std::size_t i = 0; i < J_new_blocks.size(); ++i) {
+      const BlockJacobian& h = J_new_blocks[i];
+      WithDim(BlockDim(h.block), [&](auto Dj) {
+        constexpr int kDj = decltype(Dj)::value;
+        const Eigen::Matrix<double, kD, kDj> J = h.J;
+        const Eigen::Matrix<double, kDj, 3> P_jp =
+            pose_cols_.block<kDj, 3>(BlockOffset(h.block), 3 * pose_slot_[p]);
+        if (i == 0) {
+          rows = J * P_jp;
+        } else {
+          rows += J * P_jp;
+        }
+      });
+    }
+  }
+}
+
 // SPEC S2, Eq. 8, with the covariance from the inverse model's Jacobians. The new rows of U are
 // zero, so the stored cross-covariance column is already the current one.
 template <int kD>
@@ -227,22 +261,7 @@ void BlockEkf::AugmentFixed(const BlockVector& mean, std::span<const BlockJacobi
     P_bb = P_sum;
   });
   U_.block(n, 0, kD, m_).setZero();
-  if (m_ > 0) {
-    // The new block's cross-covariances with the poses: Σ_j J_j P_jp, from the cached columns.
-    for (const int p : pose_blocks_) {
-      auto rows = pose_cols_.block<kD, 3>(n, 3 * pose_slot_[p]);
-      for (std::size_t i = 0; i < J_new_blocks.size(); ++i) {
-        const BlockJacobian& h = J_new_blocks[i];
-        WithDim(BlockDim(h.block), [&](auto Dj) {
-          constexpr int kDj = decltype(Dj)::value;
-          const Eigen::Matrix<double, kD, kDj> J = h.J;
-          const Eigen::Matrix<double, kDj, 3> P_jp =
-              pose_cols_.block<kDj, 3>(BlockOffset(h.block), 3 * pose_slot_[p]);
-          if (i == 0) rows = J * P_jp; else rows += J * P_jp;
-        });
-      }
-    }
-  }
+  if (m_ > 0) CachePoseRowsOfNewBlock<kD>(J_new_blocks);
   x_.segment<kD>(n) = mean;
 }
 

@@ -27,7 +27,7 @@ std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params) {
   return std::make_unique<NearestNeighbourAssociator>(params.association);
 }
 
-// Observations [first, first + count) of a scan against the filter's current posterior.
+// A part of a scan (all of it, or one observation) against the filter's current posterior.
 // Landmarks taken earlier in the scan are no candidates.
 class EkfSlam::ScanContext final : public AssociationContext {
  public:
@@ -81,7 +81,7 @@ EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motio
       sensor_(std::move(sensor)),
       associator_(associator ? std::move(associator) : MakeAssociator(params)),
       selection_(selection ? std::move(selection) : std::make_unique<SelectAll>()),
-      ekf_(Capacity(params)),
+      ekf_(0),  // Reset() allocates the state at its capacity
       point_kind_(ekf_.RegisterKind(kPointKind)),
       point_model_(*sensor_, point_kind_, params.association_margin_m) {
   Reset(Pose2());
@@ -135,24 +135,28 @@ int EkfSlam::AddLandmark(const PointObservation& obs) {
   return index;
 }
 
-// Association, then selection and the sequential updates of the matched observations, then
-// augmentation by the new ones (SPEC S1 items 1 and 3, S2).
-void EkfSlam::RunPipeline(std::span<const PointObservation> scan, int first, int count,
-                          std::vector<char>& taken, std::vector<AssociationDecision>& decisions) {
-  const std::span<const PointObservation> part = scan.subspan(first, count);
-  const std::vector<AssociationDecision> decided = associator_->Associate(ScanContext(*this, part, taken));
+// SPEC S1 items 1 and 3: the selection policy chooses which matched observations update the
+// filter, and in what order, from their S, H and R against the current posterior.
+void EkfSlam::SelectAndUpdate(std::span<const PointObservation> part,
+                              const std::vector<AssociationDecision>& decided) {
   std::vector<MatchedObservation> matched;
-  for (int i = 0; i < count; ++i) {
+  for (std::size_t i = 0; i < part.size(); ++i) {
     if (decided[i].kind == AssociationDecision::Kind::kMatched) {
       matched.push_back(Matched(decided[i].landmark, part[i]));
     }
   }
-  if (!matched.empty()) {
-    BlockSelectionSession session(ekf_, std::move(matched));
-    selection_->Select(session);
-  }
-  for (int i = 0; i < count; ++i) {
-    AssociationDecision d = decided[i];
+  if (matched.empty()) return;
+  BlockSelectionSession session(ekf_, std::move(matched));
+  selection_->Select(session);
+}
+
+// SPEC S2, Eq. 8 for every observation association called new; all landmarks it names are
+// taken for the rest of the scan.
+void EkfSlam::AugmentNew(std::span<const PointObservation> part,
+                         std::vector<AssociationDecision> decided, std::vector<char>& taken,
+                         std::vector<AssociationDecision>& decisions) {
+  for (std::size_t i = 0; i < part.size(); ++i) {
+    AssociationDecision& d = decided[i];
     if (d.kind == AssociationDecision::Kind::kNew) d.landmark = AddLandmark(part[i]);
     if (d.landmark >= 0) {
       taken.resize(std::max<std::size_t>(taken.size(), d.landmark + 1), 0);
@@ -160,6 +164,16 @@ void EkfSlam::RunPipeline(std::span<const PointObservation> scan, int first, int
     }
     decisions.push_back(d);
   }
+}
+
+// Association, then selection and the sequential updates of the matched observations, then
+// augmentation by the new ones.
+void EkfSlam::RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
+                          std::vector<AssociationDecision>& decisions) {
+  std::vector<AssociationDecision> decided =
+      associator_->Associate(ScanContext(*this, part, taken));
+  SelectAndUpdate(part, decided);
+  AugmentNew(part, std::move(decided), taken, decisions);
 }
 
 std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservation> observations) {
@@ -170,9 +184,9 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
   std::vector<char> taken(NumLandmarks() + observations.size(), 0);
   const int n = static_cast<int>(observations.size());
   if (params_.schedule == UpdateSchedule::kPerScan) {
-    RunPipeline(observations, 0, n, taken, decisions);
+    RunPipeline(observations, taken, decisions);
   } else {
-    for (int i = 0; i < n; ++i) RunPipeline(observations, i, 1, taken, decisions);
+    for (int i = 0; i < n; ++i) RunPipeline(observations.subspan(i, 1), taken, decisions);
   }
   ekf_.ApplyPendingDowndate();
   return decisions;

@@ -4,8 +4,7 @@
 
 namespace slamkit {
 
-BlockInversion ObservationModel::Invert(const BlockEkf& /*ekf*/,
-                                        std::span<const int> /*observers*/,
+BlockInversion ObservationModel::Invert(const BlockEkf& /*ekf*/, std::span<const int> /*observers*/,
                                         const BlockVector& /*z*/) const {
   throw std::logic_error("ObservationModel::Invert: this model cannot initialise a block");
 }

@@ -6,12 +6,11 @@
 #include "slamkit/filters/block_ekf.hpp"
 
 #include <gtest/gtest.h>
-
-#include <functional>
-#include <numbers>
+#include <tbb/global_control.h>
 
 #include <Eigen/Dense>
-#include <tbb/global_control.h>
+#include <functional>
+#include <numbers>
 
 #include "common/numeric_jacobian.hpp"
 #include "filters/dense_reference.hpp"
@@ -202,8 +201,8 @@ struct Mirror {
   int Augment(const ObservationModel& model, int observer, const Eigen::Vector2d& z,
               const Eigen::Matrix2d& R,
               const std::function<Eigen::Vector2d(const Eigen::Vector3d&, const Eigen::Vector2d&,
-                                                  Eigen::Matrix<double, 2, 3>*,
-                                                  Eigen::Matrix2d*)>& dense_invert) {
+                                                  Eigen::Matrix<double, 2, 3>*, Eigen::Matrix2d*)>&
+                  dense_invert) {
     const int observers[] = {observer};
     const int block = AugmentFrom(model, ekf, observers, z, R);
     const int o = ekf.BlockOffset(observer);
@@ -255,8 +254,8 @@ std::vector<PointObservation> MixedScan(const EkfSlam& slam, int landmarks) {
     }
     const int j = static_cast<int>(rng.Uniform(0.0, landmarks - 1e-9));
     const RangeBearing rb = PredictRangeBearing(slam.pose(), slam.LandmarkPosition(j));
-    scan.push_back(RangeBearingObs(rb.range_m + rng.Normal(0, 0.1),
-                                   rb.bearing_rad + rng.Normal(0, 0.02), j));
+    scan.push_back(
+        RangeBearingObs(rb.range_m + rng.Normal(0, 0.1), rb.bearing_rad + rng.Normal(0, 0.02), j));
   }
   return scan;
 }
@@ -298,8 +297,8 @@ TEST(BlockEkf, DeferredScanEqualsDenseSequentialEkfOnLargeState) {
     const DenseEkf ref = DenseRun(slam, scan);
     const std::vector<AssociationDecision> decisions = slam.Update(scan);
     for (std::size_t k = 0; k < scan.size(); ++k) {
-      EXPECT_EQ(decisions[k].kind, k % 3 == 2 ? AssociationDecision::Kind::kNew
-                                              : AssociationDecision::Kind::kMatched);
+      EXPECT_EQ(decisions[k].kind,
+                k % 3 == 2 ? AssociationDecision::Kind::kNew : AssociationDecision::Kind::kMatched);
     }
     EXPECT_FALSE(slam.ekf().HasPendingDowndate());
     ASSERT_EQ(slam.StateSize(), ref.x.size());
@@ -341,7 +340,8 @@ TEST(BlockEkf, TwoPoseBlocksWithVehicleVehicleObservationEqualDenseEkf) {
   const Eigen::Matrix2d R_xy = 0.04 * Eigen::Matrix2d::Identity();
 
   const int a = 0;
-  m.AddBlock(kPoseKind, Eigen::Vector3d(0.0, 0.0, 0.3), Eigen::Vector3d(0.1, 0.1, 0.01).asDiagonal());
+  m.AddBlock(kPoseKind, Eigen::Vector3d(0.0, 0.0, 0.3),
+             Eigen::Vector3d(0.1, 0.1, 0.01).asDiagonal());
   Rng rng(31);
   std::vector<int> landmarks;
   for (int i = 0; i < 5; ++i) {
@@ -351,7 +351,8 @@ TEST(BlockEkf, TwoPoseBlocksWithVehicleVehicleObservationEqualDenseEkf) {
   m.PredictPose(a, motion, Odo(0.5, 0.1, 0.05));
   // Pose B after the landmarks: its cross-covariances lie in both the row and the column part.
   const int b = m.ekf.NumBlocks();
-  m.AddBlock(kPoseKind, Eigen::Vector3d(5.0, 1.0, 2.9), Eigen::Vector3d(0.2, 0.3, 0.02).asDiagonal());
+  m.AddBlock(kPoseKind, Eigen::Vector3d(5.0, 1.0, 2.9),
+             Eigen::Vector3d(0.2, 0.3, 0.02).asDiagonal());
   for (int i = 0; i < 3; ++i) {
     landmarks.push_back(m.Augment(points, b, {rng.Uniform(3, 15), rng.Uniform(-2, 2)}, R_rb,
                                   DenseInvertRangeBearing));
@@ -363,7 +364,8 @@ TEST(BlockEkf, TwoPoseBlocksWithVehicleVehicleObservationEqualDenseEkf) {
   // One deferred step mixing every observation shape.
   auto sight = [&](int pose, int l, double dr, double db) {
     const RangeBearing rb = PredictRangeBearing(m.ekf.PoseOf(pose), m.ekf.Mean(l));
-    m.Observe(points, RangeBearingEval, {pose, l}, Eigen::Vector2d(rb.range_m + dr, rb.bearing_rad + db), R_rb);
+    m.Observe(points, RangeBearingEval, {pose, l},
+              Eigen::Vector2d(rb.range_m + dr, rb.bearing_rad + db), R_rb);
   };
   auto eval = [](const TestModel& model) {
     return [&model](const Means& means, Jacobians* J) { return model.Eval(means, J); };
@@ -401,7 +403,8 @@ TEST(BlockEkf, LineLandmarkKindWithWrappedAngleEqualsDenseEkf) {
   const Eigen::Matrix2d R_line_fine = Eigen::Vector2d(0.02 * 0.02, 0.01 * 0.01).asDiagonal();
   auto line_eval = [&](const Means& means, Jacobians* J) { return lines.Eval(means, J); };
 
-  m.AddBlock(kPoseKind, Eigen::Vector3d(1.0, 2.0, 0.3), Eigen::Vector3d(0.05, 0.05, 0.01).asDiagonal());
+  m.AddBlock(kPoseKind, Eigen::Vector3d(1.0, 2.0, 0.3),
+             Eigen::Vector3d(0.05, 0.05, 0.01).asDiagonal());
   const int p0 = m.Augment(points, 0, {5.0, 0.5}, R_rb, DenseInvertRangeBearing);
   // World α = π − 0.05: seen from θ = 0.3 at α_z = π − 0.35.
   const int wall = m.Augment(lines, 0, {4.0, kPi - 0.35}, R_line, LineModel::InvertLine);
@@ -424,7 +427,8 @@ TEST(BlockEkf, LineLandmarkKindWithWrappedAngleEqualsDenseEkf) {
   z_other += Eigen::Vector2d(0.05, -0.02);
   m.Observe(lines, line_eval, {0, other}, z_other, R_line_fine);
   const RangeBearing rb = PredictRangeBearing(m.ekf.PoseOf(0), m.ekf.Mean(p0));
-  m.Observe(points, RangeBearingEval, {0, p0}, Eigen::Vector2d(rb.range_m - 0.05, rb.bearing_rad), R_rb);
+  m.Observe(points, RangeBearingEval, {0, p0}, Eigen::Vector2d(rb.range_m - 0.05, rb.bearing_rad),
+            R_rb);
   m.ekf.ApplyPendingDowndate();
   m.ExpectEqual("after the step");
 }

@@ -1,8 +1,7 @@
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Dense>
+#include <vector>
 
 #include "slamkit/core/angle.hpp"
 
@@ -32,8 +31,7 @@ struct DenseEkf {
     grown.topLeftCorner(n, n) = P;
     grown.topRightCorner(n, d) = P * J_b_x.transpose();
     grown.bottomLeftCorner(d, n) = J_b_x * P;
-    grown.bottomRightCorner(d, d) =
-        J_b_x * P * J_b_x.transpose() + J_b_z * R * J_b_z.transpose();
+    grown.bottomRightCorner(d, d) = J_b_x * P * J_b_x.transpose() + J_b_z * R * J_b_z.transpose();
     P = grown;
     x.conservativeResize(n + d);
     x.tail(d) = mean;

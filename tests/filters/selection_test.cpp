@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include <Eigen/Dense>
+#include <algorithm>
 
 #include "filters/dense_reference.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
@@ -40,9 +39,8 @@ class GreedyBySensitivity final : public SelectionPolicy {
       for (int i = 0; i < session.size(); ++i) {
         if (!session.applied(i)) order.push_back(i);
       }
-      std::ranges::stable_sort(order, [&](int a, int b) {
-        return Sensitivity(session, a) > Sensitivity(session, b);
-      });
+      std::ranges::stable_sort(
+          order, [&](int a, int b) { return Sensitivity(session, a) > Sensitivity(session, b); });
       rankings.push_back(order);
       session.Apply(order.front());
       applied.push_back(order.front());

@@ -1,10 +1,9 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <span>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/models/motion_model.hpp"
@@ -138,6 +137,11 @@ class BlockEkf {
   Eigen::Matrix<double, Eigen::Dynamic, kZ> CovarianceTimesHt(const Linearisation& obs) const;
   template <int kZ>
   Eigen::Matrix<double, kZ, kZ> InnovationCovarianceFixed(const Linearisation& obs) const;
+  template <int kZ>
+  Eigen::Matrix<double, kZ, kZ> InnovationCovarianceFromPHt(
+      const Linearisation& obs, const Eigen::Matrix<double, Eigen::Dynamic, kZ>& PHt) const;
+  template <int kD>
+  void CachePoseRowsOfNewBlock(std::span<const BlockJacobian> J_new_blocks);
   template <int kD>
   void AugmentFixed(const BlockVector& mean, std::span<const BlockJacobian> J_new_blocks,
                     const BlockMatrix& J_new_z, const BlockMatrix& R);

@@ -1,11 +1,10 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <span>
 #include <unordered_map>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "slamkit/core/ids.hpp"
 #include "slamkit/core/pose2.hpp"
@@ -104,9 +103,13 @@ class EkfSlam final : public LandmarkSlamFilter {
   int BlockOf(int landmark) const { return landmark_blocks_[landmark]; }
   Linearisation LinearisePoint(int landmark, const PointObservation& obs) const;
   MatchedObservation Matched(int landmark, const PointObservation& obs) const;
-  // The steps of SPEC S2 / S1 on observations [first, first + count) of the scan.
-  void RunPipeline(std::span<const PointObservation> scan, int first, int count,
-                   std::vector<char>& taken, std::vector<AssociationDecision>& decisions);
+  // The steps of SPEC S2 / S1 on `part` of a scan (all of it, or one observation).
+  void RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
+                   std::vector<AssociationDecision>& decisions);
+  void SelectAndUpdate(std::span<const PointObservation> part,
+                       const std::vector<AssociationDecision>& decided);
+  void AugmentNew(std::span<const PointObservation> part, std::vector<AssociationDecision> decided,
+                  std::vector<char>& taken, std::vector<AssociationDecision>& decisions);
 
   EkfSlamParams params_;
   std::unique_ptr<MotionModel> motion_;

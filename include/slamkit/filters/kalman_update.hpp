@@ -10,8 +10,8 @@ template <int kN, int kM>
 struct KalmanCorrection {
   Eigen::Matrix<double, kN, 1> mean;
   Eigen::Matrix<double, kN, kN> covariance;
-  Eigen::Matrix<double, kM, kM> S;           // innovation covariance H P Hᵀ + R
-  Eigen::Matrix<double, kM, 1> innovation;   // as given (already wrapped by the caller's model)
+  Eigen::Matrix<double, kM, kM> S;          // innovation covariance H P Hᵀ + R
+  Eigen::Matrix<double, kM, 1> innovation;  // as given (already wrapped by the caller's model)
   bool ok = false;  // false when S is not positive definite: mean and covariance unchanged
 };
 

@@ -38,9 +38,7 @@ class ObservationModel {
                                 const BlockVector& z) const;
   // Whether `blocks` can have produced an observation at all (e.g. a landmark within reach), so
   // that association skips the Mahalanobis test on the rest.
-  virtual bool Gate(const BlockEkf& /*ekf*/, std::span<const int> /*blocks*/) const {
-    return true;
-  }
+  virtual bool Gate(const BlockEkf& /*ekf*/, std::span<const int> /*blocks*/) const { return true; }
 };
 
 // `z` (noise `R`) linearised under `model` at the current mean of `ekf`.
