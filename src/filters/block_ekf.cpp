@@ -1,7 +1,5 @@
 #include "slamkit/filters/block_ekf.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
@@ -94,32 +92,19 @@ Eigen::MatrixXd BlockEkf::CurrentColumns(int c, int k) const {
   return cols;
 }
 
-Eigen::MatrixXd BlockEkf::BlockColumns(int block) const {
+Eigen::Ref<const Eigen::MatrixXd> BlockEkf::BlockColumns(int block,
+                                                         Eigen::MatrixXd& scratch) const {
   const Block& b = blocks_[block];
   const int slot = pose_slot_[block];
   if (m_ > 0 && slot >= 0) return pose_cols_.block(0, 3 * slot, n_, 3);
-  return CurrentColumns(b.offset, b.dim);
+  scratch = CurrentColumns(b.offset, b.dim);
+  return scratch;
 }
 
 void BlockEkf::StartPoseCache() {
   for (const int p : pose_blocks_) {
     pose_cols_.block(0, 3 * pose_slot_[p], n_, 3) = CurrentColumns(blocks_[p].offset, 3);
   }
-}
-
-void BlockEkf::ApplyPendingDowndate() {
-  if (m_ == 0) return;
-  // Fixed blocks, whatever the thread count, so the sums and hence the bits never change.
-  constexpr int kBlock = 128;
-  const auto U = U_.topLeftCorner(n_, m_);
-  const int blocks = (n_ + kBlock - 1) / kBlock;
-  tbb::parallel_for(0, blocks, [&](int b) {
-    const int j0 = b * kBlock, w = std::min(kBlock, n_ - j0);
-    const auto U_j = U.middleRows(j0, w);
-    P_.block(0, j0, j0, w).noalias() -= U.topRows(j0) * U_j.transpose();
-    P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= U_j * U_j.transpose();
-  });
-  m_ = 0;
 }
 
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1): only the moving pose's rows change.

@@ -1,6 +1,8 @@
 // The parts of BlockEkf whose small matrices take fixed sizes: the sequential update, the
 // innovation covariance and augmentation, each dispatched on the dimensions involved.
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Cholesky>
 
 #include "block_dispatch.hpp"
@@ -38,6 +40,21 @@ Eigen::MatrixXd BlockEkf::CovarianceBlock(int a, int b) const {
   });
 }
 
+void BlockEkf::ApplyPendingDowndate() {
+  if (m_ == 0) return;
+  // Fixed blocks, whatever the thread count, so the sums and hence the bits never change.
+  constexpr int kBlock = 128;
+  const auto U = U_.topLeftCorner(n_, m_);
+  const int blocks = (n_ + kBlock - 1) / kBlock;
+  tbb::parallel_for(0, blocks, [&](int b) {
+    const int j0 = b * kBlock, w = std::min(kBlock, n_ - j0);
+    const auto U_j = U.middleRows(j0, w);
+    P_.block(0, j0, j0, w).noalias() -= U.topRows(j0) * U_j.transpose();
+    P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= U_j * U_j.transpose();
+  });
+  m_ = 0;
+}
+
 // P Hᵀ (n × kZ): H is zero outside the observed blocks, so each costs O(n). Two blocks (pose and
 // landmark, two poses) are summed in one expression, the form the point-landmark filter has
 // always used, so that its results stay bit for bit the same.
@@ -47,7 +64,9 @@ Eigen::Matrix<double, Eigen::Dynamic, kZ> BlockEkf::CovarianceTimesHt(
   const std::span<const BlockJacobian> H = obs.H.view();
   Eigen::Matrix<double, Eigen::Dynamic, kZ> PHt;
   if (H.size() == 2) {
-    const Eigen::MatrixXd P_0 = BlockColumns(H[0].block), P_1 = BlockColumns(H[1].block);
+    Eigen::MatrixXd scratch_0, scratch_1;
+    const Eigen::Ref<const Eigen::MatrixXd> P_0 = BlockColumns(H[0].block, scratch_0);
+    const Eigen::Ref<const Eigen::MatrixXd> P_1 = BlockColumns(H[1].block, scratch_1);
     WithDim(BlockDim(H[0].block), [&](auto D0) {
       WithDim(BlockDim(H[1].block), [&](auto D1) {
         const Eigen::Matrix<double, kZ, decltype(D0)::value> J_0 = H[0].J;
@@ -59,7 +78,8 @@ Eigen::Matrix<double, Eigen::Dynamic, kZ> BlockEkf::CovarianceTimesHt(
   }
   PHt.setZero(n_, kZ);
   for (const BlockJacobian& h : H) {
-    const Eigen::MatrixXd P_b = BlockColumns(h.block);
+    Eigen::MatrixXd scratch;
+    const Eigen::Ref<const Eigen::MatrixXd> P_b = BlockColumns(h.block, scratch);
     WithDim(BlockDim(h.block), [&](auto D) {
       const Eigen::Matrix<double, kZ, decltype(D)::value> J = h.J;
       PHt += P_b * J.transpose();
@@ -240,7 +260,8 @@ void BlockEkf::AugmentFixed(const BlockVector& mean, std::span<const BlockJacobi
       WithDim(BlockDim(j), [&](auto Dj) {
         constexpr int kDj = decltype(Dj)::value;
         const Eigen::Matrix<double, kD, kDj> J = J_new_blocks[0].J;
-        const Eigen::MatrixXd P_j = BlockColumns(j);
+        Eigen::MatrixXd scratch;
+        const Eigen::Ref<const Eigen::MatrixXd> P_j = BlockColumns(j, scratch);
         const Eigen::Matrix<double, kDj, kDj> P_jj = P_j.middleRows<kDj>(BlockOffset(j));
         P_new = P_j * J.transpose();
         P_bb = J * P_jj * J.transpose() + J_z * R_z * J_z.transpose();
@@ -251,7 +272,8 @@ void BlockEkf::AugmentFixed(const BlockVector& mean, std::span<const BlockJacobi
     for (const BlockJacobian& h : J_new_blocks) {
       WithDim(BlockDim(h.block), [&](auto Dj) {
         const Eigen::Matrix<double, kD, decltype(Dj)::value> J = h.J;
-        P_new += BlockColumns(h.block) * J.transpose();
+        Eigen::MatrixXd scratch;
+        P_new += BlockColumns(h.block, scratch) * J.transpose();
       });
     }
     Eigen::Matrix<double, kD, kD> P_sum = J_z * R_z * J_z.transpose();

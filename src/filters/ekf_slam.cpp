@@ -88,8 +88,13 @@ EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motio
 }
 
 void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
-  ekf_ = BlockEkf(Capacity(params_));
-  point_kind_ = ekf_.RegisterKind(kPointKind);
+  // Reusing the storage keeps a long-lived filter in memory it has touched already.
+  if (ekf_.Capacity() == Capacity(params_)) {
+    ekf_.Clear();
+  } else {
+    ekf_ = BlockEkf(Capacity(params_));
+    point_kind_ = ekf_.RegisterKind(kPointKind);
+  }
   ekf_.AddBlock(kPoseKind, pose.vector(), pose_cov);
   landmark_blocks_.clear();
   source_ids_.clear();

@@ -76,7 +76,7 @@ class BlockEkf {
   int RegisterKind(const BlockKind& kind);
   const BlockKind& kind(int id) const { return kinds_[id]; }
 
-  // Empties the state (the kinds stay registered).
+  // Empties the state, keeping the kinds registered and the storage allocated.
   void Clear();
   // Appends a block uncorrelated with the rest (a vehicle's start pose); returns its index.
   int AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov);
@@ -108,6 +108,8 @@ class BlockEkf {
   int BlockOffset(int block) const { return blocks_[block].offset; }
   int BlockDim(int block) const { return blocks_[block].dim; }
   int StateSize() const { return n_; }
+  // Entries allocated for the state; it grows by doubling beyond this.
+  int Capacity() const { return static_cast<int>(x_.size()); }
   auto Mean(int block) const { return x_.segment(blocks_[block].offset, blocks_[block].dim); }
   Pose2 PoseOf(int block) const { return Pose2(x_.segment<3>(blocks_[block].offset)); }
   // Covariance block (a, b) of the current posterior (through any pending downdate).
@@ -125,7 +127,8 @@ class BlockEkf {
   // Columns [c, c+k) of the current covariance P₀ − U Uᵀ, gathered from the stored triangle.
   Eigen::MatrixXd CurrentColumns(int c, int k) const;
   // The current columns of block `block`: cached for pose blocks while downdates are pending.
-  Eigen::MatrixXd BlockColumns(int block) const;
+  // A view of the cache, or of `scratch` holding the gathered columns.
+  Eigen::Ref<const Eigen::MatrixXd> BlockColumns(int block, Eigen::MatrixXd& scratch) const;
   // Rows [r, r+R) × columns [c, c+C) of the current covariance, r + R <= c or r == c.
   template <int R, int C>
   Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
