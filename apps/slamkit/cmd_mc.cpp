@@ -31,7 +31,7 @@ void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
   const AssociationScore& a = mc.association;
   fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association\n", scenario.name,
              mc.runs.size(), mc.t_s.size(), mc.world.landmarks.size(),
-             config.ekf.known_association ? "known" : "nearest-neighbour");
+             config.ekf.known_association() ? "known" : "nearest-neighbour");
   fmt::print("  {:<28}{:>14}\n", "position RMSE [m]", fmt::format("{:.4f}", mc.rmse.position_m));
   fmt::print("  {:<28}{:>14}\n", "heading RMSE [deg]",
              fmt::format("{:.4f}", RadToDeg(mc.rmse.heading_rad)));
@@ -40,7 +40,7 @@ void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
              100.0 * mc.anees_fraction_in_band);
   fmt::print("  {:<28}{:>14}\n", "landmarks mapped (mean)",
              fmt::format("{:.1f}", mc.landmarks_mapped_mean));
-  if (!config.ekf.known_association) {
+  if (!config.ekf.known_association()) {
     fmt::print("  {:<28}{:>14}\n", "association precision", fmt::format("{:.4f}", a.Precision()));
     fmt::print("  {:<28}{:>14}\n", "association recall", fmt::format("{:.4f}", a.Recall()));
   }
@@ -73,13 +73,15 @@ void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenar
 
 int RunMonteCarloCommand(const McOptions& options) {
   ScenarioConfig config = LoadScenario(options.config);
-  if (options.known_association) config.ekf.known_association = true;
-  if (options.unknown_association) config.ekf.known_association = false;
+  if (options.known_association) config.ekf.association_method = AssociationMethod::kKnown;
+  if (options.unknown_association) {
+    config.ekf.association_method = AssociationMethod::kNearestNeighbour;
+  }
   MonteCarloParams params;
   params.runs = options.runs;
   params.seed = options.seed;
   params.threads = options.threads;
-  params.known_association = config.ekf.known_association;
+  params.known_association = config.ekf.known_association();
   auto progress = std::make_shared<Progress>("runs", options.runs);
   params.progress = [progress](int done, int total) {
     (void)total;

@@ -27,7 +27,8 @@ struct RunOptions {
 int RunIsamCommand(const RunOptions& o) {
   const IsamLog log = ReadIsamLog(o.isam);
   IsamRunParams params;
-  params.ekf.known_association = o.known_association;
+  params.ekf.association_method =
+      o.known_association ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
   params.ekf.association.gate_chi2 = o.gate_chi2;
   params.ekf.association.new_landmark_chi2 = o.new_landmark_chi2;
   params.odometry_covariance_scale = o.odometry_covariance_scale;

@@ -1,6 +1,7 @@
 #include "slamkit/filters/data_association.hpp"
 
 #include <limits>
+#include <vector>
 
 namespace slamkit {
 
@@ -25,6 +26,42 @@ AssociationDecision NearestNeighbourAssociator::Associate(
     best.landmark = -1;
   }
   return best;
+}
+
+// A landmark taken by an earlier observation of the scan is no candidate for the later ones: two
+// sightings in one scan are two landmarks.
+std::vector<AssociationDecision> NearestNeighbourAssociator::Associate(
+    const AssociationContext& scan) {
+  std::vector<AssociationDecision> decisions;
+  decisions.reserve(scan.NumObservations());
+  std::vector<char> taken(scan.NumLandmarks(), 0);
+  for (int i = 0; i < scan.NumObservations(); ++i) {
+    free_.clear();
+    for (const AssociationCandidate& c : scan.Candidates(i)) {
+      if (!taken[c.landmark]) free_.push_back(c);
+    }
+    const AssociationDecision d = Associate(free_);
+    if (d.kind == AssociationDecision::Kind::kMatched) taken[d.landmark] = 1;
+    decisions.push_back(d);
+  }
+  return decisions;
+}
+
+std::vector<AssociationDecision> KnownAssociation::Associate(const AssociationContext& scan) {
+  std::vector<AssociationDecision> decisions(scan.NumObservations());
+  for (int i = 0; i < scan.NumObservations(); ++i) {
+    AssociationDecision& d = decisions[i];
+    const int landmark = scan.LandmarkWithSourceId(scan.Observation(i).id);
+    if (landmark < 0) {
+      d.kind = AssociationDecision::Kind::kNew;
+      d.distance_chi2 = std::numeric_limits<double>::infinity();
+    } else {
+      d.kind = AssociationDecision::Kind::kMatched;
+      d.landmark = landmark;
+      d.distance_chi2 = scan.Distance(i, landmark);
+    }
+  }
+  return decisions;
 }
 
 }  // namespace slamkit

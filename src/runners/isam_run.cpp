@@ -49,7 +49,7 @@ IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) 
     std::vector<PointObservation> input = sightings;
     for (PointObservation& s : input) {
       s.R *= params.sighting_covariance_scale;
-      if (!params.ekf.known_association) s.id = kNoLandmark;  // ids only score the result
+      if (!params.ekf.known_association()) s.id = kNoLandmark;  // ids only score the result
     }
     const auto decisions = slam.Update(input);
     for (std::size_t i = 0; i < decisions.size(); ++i) {

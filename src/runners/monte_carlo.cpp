@@ -13,8 +13,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "ekf_slam_adapter.hpp"
 #include "slamkit/eval/alignment.hpp"
+#include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/models/range_bearing.hpp"
 
 namespace slamkit {
@@ -102,8 +102,8 @@ std::vector<AssociationDecision> CheckedUpdate(LandmarkSlamFilter& filter,
 LandmarkFilterFactory EkfSlamFactory(const EkfSlamParams& ekf, const VehicleParams& vehicle,
                                      const RangeBearingParams& sensor) {
   return [ekf, vehicle, sensor]() -> std::unique_ptr<LandmarkSlamFilter> {
-    return std::make_unique<EkfSlamAdapter>(ekf, MakeMotionModel(vehicle),
-                                            std::make_unique<RangeBearingModel>(sensor));
+    return std::make_unique<EkfSlam>(ekf, MakeMotionModel(vehicle),
+                                     std::make_unique<RangeBearingModel>(sensor));
   };
 }
 
@@ -240,7 +240,7 @@ MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
 }
 
 MonteCarloResult RunMonteCarlo(const ScenarioConfig& config, MonteCarloParams params) {
-  params.known_association = config.ekf.known_association;
+  params.known_association = config.ekf.known_association();
   return RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
 }
 

@@ -64,7 +64,7 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
   const ScenarioParams& scenario = config.scenario;
   return {{"scenario", scenario.name},
           {"motion_model", ToString(scenario.vehicle.kind)},
-          {"known_association", config.ekf.known_association},
+          {"known_association", config.ekf.known_association()},
           {"runs", params.runs},
           {"seed", params.seed},
           {"steps", mc.t_s.size()},
@@ -99,7 +99,7 @@ void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::js
 }
 
 nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) {
-  return {{"known_association", params.ekf.known_association},
+  return {{"known_association", params.ekf.known_association()},
           {"poses", r.estimate.size()},
           {"sightings", r.sightings},
           {"dropped", r.dropped},

@@ -120,7 +120,10 @@ void ReadSensor(const Section& root, RangeBearingParams* p, int* period_steps) {
 void ReadEkf(const Section& root, EkfSlamParams* p) {
   const Section s = root.Child("ekf", {"known_association", "gate_chi2", "new_landmark_chi2",
                                        "association_margin_m", "initial_landmark_capacity"});
-  s.Read("known_association", &p->known_association);
+  bool known = p->known_association();
+  s.Read("known_association", &known);
+  p->association_method =
+      known ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
   s.Read("gate_chi2", &p->association.gate_chi2, Bound::kPositive);
   s.Read("new_landmark_chi2", &p->association.new_landmark_chi2, Bound::kPositive);
   if (p->association.new_landmark_chi2 < p->association.gate_chi2) {

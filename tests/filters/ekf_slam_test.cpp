@@ -118,7 +118,7 @@ TEST(EkfSlam, EqualsKalmanFilterOnLinearGaussianCase) {
   odo.sigma_xy_m = 0.1;
   odo.sigma_theta_rad = 0.0;
   EkfSlamParams params;
-  params.known_association = true;
+  params.association_method = AssociationMethod::kKnown;
   EkfSlam slam(params, std::make_unique<OdometryModel>(odo), std::make_unique<RelativePointModel>());
   slam.Reset(Pose2(), Eigen::Vector3d(0.2, 0.3, 0.0).asDiagonal());
 
@@ -179,7 +179,8 @@ TEST(EkfSlam, EqualsKalmanFilterOnLinearGaussianCase) {
 TEST(EkfSlam, KnownAssociationUsesIdsAndUnknownFindsThem) {
   for (const bool known : {true, false}) {
     EkfSlamParams params;
-    params.known_association = known;
+    params.association_method =
+        known ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
     EkfSlam slam(params, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>());
     slam.Reset(Pose2(), Eigen::Matrix3d::Identity() * 1e-6);
     const std::vector<PointObservation> first = {RangeBearingObs(5.0, 0.3, 10),
@@ -203,6 +204,52 @@ TEST(EkfSlam, RejectsNonFiniteObservation) {
                std::make_unique<RangeBearingModel>());
   const std::vector<PointObservation> bad = {RangeBearingObs(std::nan(""), 0.1)};
   EXPECT_THROW(slam.Update(bad), std::invalid_argument);
+}
+
+// What a joint-compatibility associator sees: for a hypothesis, the stacked innovation and
+// H P Hᵀ + R over all its pairings, cross terms included.
+class JointRecorder final : public Associator {
+ public:
+  std::vector<AssociationDecision> Associate(const AssociationContext& scan) override {
+    const std::vector<Pairing> hypothesis = {{0, 2}, {1, 0}};
+    joint = scan.Joint(hypothesis);
+    return KnownAssociation().Associate(scan);
+  }
+  JointInnovation joint;
+};
+
+TEST(EkfSlam, AssociatorSeesTheJointInnovationOfAHypothesis) {
+  EkfSlamParams params;
+  params.schedule = UpdateSchedule::kPerScan;
+  auto recorder = std::make_unique<JointRecorder>();
+  JointRecorder* joint = recorder.get();
+  EkfSlam slam(params, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>(),
+               std::move(recorder));
+  slam.Reset(Pose2(1.0, -2.0, 0.4), Eigen::Vector3d(0.01, 0.02, 0.003).asDiagonal());
+  for (int i = 0; i < 3; ++i) slam.AddLandmark(RangeBearingObs(4.0 + i, -1.0 + i, i));
+  slam.Predict(Odo(0.5, 0.05, 0.1), 0.1);
+  const Eigen::VectorXd x = slam.State();
+  const Eigen::MatrixXd P = slam.Covariance();
+  const std::vector<PointObservation> scan = {RangeBearingObs(6.1, 0.9, 2),
+                                              RangeBearingObs(3.9, -1.1, 0)};
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(4, x.size());
+  Eigen::VectorXd nu(4);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(4, 4);
+  const int landmark_of[] = {2, 0};
+  for (int k = 0; k < 2; ++k) {
+    Eigen::Matrix<double, 2, 3> H_x;
+    Eigen::Matrix2d H_l;
+    const int c = 3 + 2 * landmark_of[k];
+    const RangeBearing rb = PredictRangeBearing(Pose2(x.head<3>()), x.segment<2>(c), &H_x, &H_l);
+    H.block(2 * k, 0, 2, 3) = H_x;
+    H.block(2 * k, c, 2, 2) = H_l;
+    nu.segment<2>(2 * k) = scan[k].z - Eigen::Vector2d(rb.range_m, rb.bearing_rad);
+    nu[2 * k + 1] = WrapAngle(nu[2 * k + 1]);
+    R.block<2, 2>(2 * k, 2 * k) = scan[k].R;
+  }
+  slam.Update(scan);
+  EXPECT_LT((joint->joint.nu - nu).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((joint->joint.S - (H * P * H.transpose() + R)).cwiseAbs().maxCoeff(), 1e-12);
 }
 
 }  // namespace

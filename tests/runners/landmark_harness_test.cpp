@@ -125,7 +125,7 @@ TEST(LandmarkHarness, ToyFilterGetsRmseAssociationAndMapErrorFromTheInterface) {
   const MonteCarloResult toy =
       RunMonteCarlo(config.scenario, DeadReckoning(config.scenario, 1.0, &ids), Params(false));
   const MonteCarloResult ekf = RunMonteCarlo(config.scenario, EkfSlamFactory(config),
-                                             Params(config.ekf.known_association));
+                                             Params(config.ekf.known_association()));
   // Dead reckoning drifts; EKF-SLAM with the same inputs does not.
   EXPECT_GT(toy.rmse.position_m, 3.0 * ekf.rmse.position_m);
   EXPECT_GT(toy.map_rmse_mean_m, 3.0 * ekf.map_rmse_mean_m);

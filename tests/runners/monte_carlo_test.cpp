@@ -13,7 +13,8 @@ namespace {
 
 ScenarioConfig ShortScenario(bool known_association) {
   ScenarioConfig s = LoadScenario(std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yaml");
-  s.ekf.known_association = known_association;
+  s.ekf.association_method =
+      known_association ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
   return s;
 }
 

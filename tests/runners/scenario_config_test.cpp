@@ -131,7 +131,7 @@ TEST_F(ScenarioConfigFile, EverySensorAndEkfKeyReachesItsField) {
   EXPECT_EQ(p.sensor.sigma_range_m, 0.2);
   EXPECT_DOUBLE_EQ(p.sensor.sigma_bearing_rad, DegToRad(2));
   EXPECT_EQ(p.sensor_period_steps, 3);
-  EXPECT_TRUE(c.ekf.known_association);
+  EXPECT_TRUE(c.ekf.known_association());
   EXPECT_EQ(c.ekf.association.gate_chi2, 5.99);
   EXPECT_EQ(c.ekf.association.new_landmark_chi2, 20.0);
   EXPECT_EQ(c.ekf.association_margin_m, 2.0);

@@ -54,7 +54,7 @@ TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
   EXPECT_EQ(s.sensor_period_steps, 8);
   EXPECT_DOUBLE_EQ(s.sensor.fov_rad, DegToRad(180.0));
   EXPECT_DOUBLE_EQ(s.sensor.sigma_bearing_rad, DegToRad(1.0));
-  EXPECT_FALSE(c.ekf.known_association);
+  EXPECT_FALSE(c.ekf.known_association());
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_GE(world.landmarks.size(), 60u);
   EXPECT_LE(world.landmarks.size(), 100u);
@@ -71,7 +71,7 @@ TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
   const ScenarioConfig c = Load("square_400.yaml");
   const ScenarioParams& s = c.scenario;
   EXPECT_EQ(s.vehicle.kind, MotionKind::kOdometry);
-  EXPECT_TRUE(c.ekf.known_association);
+  EXPECT_TRUE(c.ekf.known_association());
   const LandmarkWorld world = MakeWorld(s.world);
   ASSERT_EQ(world.landmarks.size(), 400u);
   for (const Landmark& l : world.landmarks) {
@@ -95,7 +95,7 @@ TEST(ShippedConfigs, Square400RunsExactly1000StepsOverAtLeastOneLap) {
 TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
   const ScenarioConfig c = Load("short.yaml");
   const ScenarioParams& s = c.scenario;
-  EXPECT_TRUE(c.ekf.known_association);
+  EXPECT_TRUE(c.ekf.known_association());
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_EQ(world.landmarks.size(), 30u);
   EXPECT_GT(MinSpacing(world), 5.0);

@@ -1,6 +1,12 @@
 #pragma once
 
 #include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "slamkit/core/ids.hpp"
+#include "slamkit/models/point_sensor.hpp"
 
 namespace slamkit {
 
@@ -27,17 +33,68 @@ struct AssociationDecision {
   double distance_chi2 = 0.0; // to the nearest candidate (infinity when there was none)
 };
 
+// A pairing hypothesis for a joint-compatibility test: observation `observation` of the scan
+// produced by landmark `landmark`.
+struct Pairing {
+  int observation = -1;
+  int landmark = -1;
+};
+
+// The joint innovation of a hypothesis: the stacked innovations and their joint covariance
+// (Neira & Tardós 2001: D² = νᵀ S⁻¹ ν against a χ² bound with the stacked dimension).
+struct JointInnovation {
+  Eigen::VectorXd nu;
+  Eigen::MatrixXd S;
+};
+
+// A scan's observations as an associator sees them, against the filter's current posterior.
+class AssociationContext {
+ public:
+  virtual ~AssociationContext() = default;
+
+  virtual int NumObservations() const = 0;
+  virtual const PointObservation& Observation(int i) const = 0;
+  virtual int NumLandmarks() const = 0;
+  // The landmarks that pass the observation model's gate for observation i and that no earlier
+  // part of this scan took, in landmark order, with their squared Mahalanobis distances.
+  virtual std::span<const AssociationCandidate> Candidates(int i) const = 0;
+  // The landmark created from observation id `id`, or -1.
+  virtual int LandmarkWithSourceId(LandmarkId id) const = 0;
+  // Squared Mahalanobis distance of observation i from landmark `landmark`.
+  virtual double Distance(int i, int landmark) const = 0;
+  virtual JointInnovation Joint(std::span<const Pairing> hypothesis) const = 0;
+};
+
+// Decides which landmark produced each observation of a scan.
+class Associator {
+ public:
+  virtual ~Associator() = default;
+  // One decision per observation, in order; kNew decisions carry landmark -1.
+  virtual std::vector<AssociationDecision> Associate(const AssociationContext& scan) = 0;
+};
+
 // SPEC S2, Eqs. 6-7: nearest neighbour on the Mahalanobis distance with a χ² gate, and a second,
-// larger gate that separates new landmarks from ambiguous sightings.
-class NearestNeighbourAssociator {
+// larger gate that separates new landmarks from ambiguous sightings. Observations are decided in
+// scan order and a landmark takes at most one sighting per scan.
+class NearestNeighbourAssociator final : public Associator {
  public:
   explicit NearestNeighbourAssociator(const AssociationParams& params = {}) : params_(params) {}
-  // Decides from the candidates; a kNew decision carries landmark -1 (the filter assigns it).
+  std::vector<AssociationDecision> Associate(const AssociationContext& scan) override;
+  // The rule for one observation: decides from its candidates; a kNew decision carries
+  // landmark -1 (the filter assigns it).
   AssociationDecision Associate(std::span<const AssociationCandidate> candidates) const;
   const AssociationParams& params() const { return params_; }
 
  private:
   AssociationParams params_;
+  std::vector<AssociationCandidate> free_;  // scratch, reused across scans
+};
+
+// The observation's id names its landmark (simulator truth, a data set's association): the
+// landmark created from that id, or a new one.
+class KnownAssociation final : public Associator {
+ public:
+  std::vector<AssociationDecision> Associate(const AssociationContext& scan) override;
 };
 
 }  // namespace slamkit

@@ -1,117 +1,127 @@
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <span>
 #include <unordered_map>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "slamkit/core/ids.hpp"
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/filters/block_ekf.hpp"
 #include "slamkit/filters/data_association.hpp"
+#include "slamkit/filters/landmark_slam.hpp"
+#include "slamkit/filters/point_landmark_model.hpp"
+#include "slamkit/filters/selection.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/models/motion_model.hpp"
 #include "slamkit/models/point_sensor.hpp"
 
 namespace slamkit {
 
+// The associators EkfSlamParams can name (configuration files, the CLI); any other Associator
+// can be passed to the EkfSlam constructor.
+enum class AssociationMethod {
+  kNearestNeighbour,  // SPEC S2, Eqs. 6-7
+  kKnown,             // each observation's id is its landmark (simulator truth, a data set's)
+};
+
+// When association runs relative to the updates of a scan.
+enum class UpdateSchedule {
+  // Each observation in turn is associated against the posterior its predecessors left, then
+  // applied (Probabilistic Robotics Table 10.3). The steps below run on one observation at a time.
+  kPerObservation,
+  // The whole scan is associated against the prior, then selected, updated and augmented: what
+  // joint association (JCBB) and a selection policy ranking the scan (SPEC S1 item 3) need.
+  kPerScan,
+};
+
 struct EkfSlamParams {
-  // Use each observation's id as its landmark (simulator truth or a data set's association)
-  // instead of nearest-neighbour association.
-  bool known_association = false;
+  AssociationMethod association_method = AssociationMethod::kNearestNeighbour;
   AssociationParams association;
+  UpdateSchedule schedule = UpdateSchedule::kPerObservation;
   // A landmark farther than the sensor's range plus this margin from the estimated pose is not
   // considered for association (saves the Mahalanobis test on landmarks that cannot be seen).
   double association_margin_m = 5.0;
   // Landmark slots allocated up front; the state grows by doubling beyond this.
   int initial_landmark_capacity = 64;
+
+  bool known_association() const { return association_method == AssociationMethod::kKnown; }
 };
 
-// EKF-SLAM on an augmented state x = [x_v, m_1 … m_N] with point landmarks (SPEC S1 item 1, S2).
-//
-// Only the upper triangle of the covariance is stored and updated: prediction touches the pose
-// rows (O(n)), each observation's sequential update is a symmetric rank-2 downdate of that
-// triangle (O(n²)), and augmentation appends two columns (O(n)).
-//
-// Within one Update() the rank-2 downdates of its observations are deferred: the covariance is
-// kept as P₀ − U Uᵀ, each observation reads the few columns it needs through that correction
-// (O(n·m)) and appends its two columns to U, and the whole step's downdate P₀ − U Uᵀ is applied
-// in one pass over the triangle at the end. The result is the sequential EKF's (each observation
-// is linearised at the mean its predecessors left) with one pass over memory instead of m.
-class EkfSlam {
+// The associator `params` names.
+std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params);
+
+// EKF-SLAM with point landmarks (SPEC S1 item 1, S2): a BlockEkf holding one pose and point
+// landmarks, and an update that is a pipeline of injected steps: association (an Associator),
+// selection (a SelectionPolicy), the sequential updates, augmentation of the new landmarks.
+// The updates of one Update() share one deferred covariance downdate (see BlockEkf).
+class EkfSlam final : public LandmarkSlamFilter {
  public:
+  // `associator` defaults to the one params names, `selection` to SelectAll.
   EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motion,
-          std::unique_ptr<PointSensorModel> sensor);
+          std::unique_ptr<PointSensorModel> sensor, std::unique_ptr<Associator> associator = {},
+          std::unique_ptr<SelectionPolicy> selection = {});
 
-  // Forgets the map and starts from `pose` with covariance `pose_cov`.
-  void Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov = Eigen::Matrix3d::Zero());
-
+  void Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov = Eigen::Matrix3d::Zero()) override;
   // SPEC S2, Eq. 2 and Table 10.1 of Probabilistic Robotics: moves the pose with control `u`.
-  // `control_noise` overrides the motion model's noise (a data set's own odometry covariance).
-  void Predict(const Control& u, double dt_s, const ControlCovariance* control_noise = nullptr);
+  void Predict(const Control& u, double dt_s,
+               const ControlCovariance* control_noise = nullptr) override;
+  // Association, selection, sequential updates and augmentation of one scan.
+  // Throws std::invalid_argument on a non-finite measurement or covariance (before any change).
+  std::vector<AssociationDecision> Update(std::span<const PointObservation> observations) override;
 
-  // Associates, updates with and augments by each observation in turn (sequential EKF).
-  // Throws std::invalid_argument on a non-finite measurement or covariance.
-  std::vector<AssociationDecision> Update(std::span<const PointObservation> observations);
-
-  // One sequential update of landmark `landmark` with `obs` (Table 10.2, one innovation).
-  void UpdateLandmark(int landmark, const PointObservation& obs) {
-    UpdateLandmarkDeferred(landmark, obs);
-    ApplyDeferredDowndate();
-  }
+  // One sequential update of landmark `landmark` with `obs` (Table 10.2, one innovation). The
+  // covariance downdate stays deferred until ApplyPendingDowndate(), Predict() or Update();
+  // reads in between see the updated covariance.
+  void UpdateLandmark(int landmark, const PointObservation& obs);
+  void ApplyPendingDowndate() { ekf_.ApplyPendingDowndate(); }
   // Adds a landmark initialised from `obs` by the inverse sensor model (SPEC S2, Eq. 8).
   int AddLandmark(const PointObservation& obs);
   // Squared Mahalanobis distance of `obs` from landmark `landmark`'s predicted measurement.
   double MahalanobisDistance(int landmark, const PointObservation& obs) const;
 
-  Pose2 pose() const { return Pose2(x_.head<3>()); }
-  Eigen::Matrix3d PoseCovariance() const;
-  int NumLandmarks() const { return static_cast<int>(source_ids_.size()); }
-  int StateSize() const { return n_; }
-  Eigen::Vector2d LandmarkPosition(int landmark) const { return x_.segment<2>(Offset(landmark)); }
+  Pose2 PoseEstimate() const override { return pose(); }
+  Pose2 pose() const { return ekf_.PoseOf(kPoseBlock); }
+  Eigen::Matrix3d PoseCovariance() const override;
+  int NumLandmarks() const override { return static_cast<int>(source_ids_.size()); }
+  int StateSize() const { return ekf_.StateSize(); }
+  Eigen::Vector2d LandmarkPosition(int landmark) const { return ekf_.Mean(BlockOf(landmark)); }
   Eigen::Matrix2d LandmarkCovariance(int landmark) const;
   // The id of the observation that created the landmark (kNoLandmark if it had none).
   LandmarkId LandmarkSourceId(int landmark) const { return source_ids_[landmark]; }
-  // The estimated landmarks with their marginal covariances.
-  LandmarkMap Map() const;
+  LandmarkMap Map() const override;
   // The full symmetric covariance (a copy; O(n²), for tests and output).
-  Eigen::MatrixXd Covariance() const;
-  Eigen::VectorXd State() const { return x_.head(n_); }
+  Eigen::MatrixXd Covariance() const { return ekf_.Covariance(); }
+  Eigen::VectorXd State() const { return ekf_.State(); }
   const EkfSlamParams& params() const { return params_; }
+  const BlockEkf& ekf() const { return ekf_; }
 
  private:
-  static int Offset(int landmark) { return 3 + 2 * landmark; }
-  // Columns [c, c+k) of the current covariance P₀ − U Uᵀ, gathered from the stored triangle.
-  Eigen::MatrixXd CurrentColumns(int c, int k) const;
-  // Columns 0-2 (the pose's) of the current covariance; cached while downdates are deferred.
-  Eigen::MatrixXd CurrentPoseColumns() const;
-  // A small block of the current covariance: rows [r, r+R), columns [c, c+C).
-  template <int R, int C>
-  Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
-  void UpdateLandmarkDeferred(int landmark, const PointObservation& obs);
-  // P₀ ← P₀ − U Uᵀ on the upper triangle, in fixed column blocks run in parallel.
-  void ApplyDeferredDowndate();
-  Eigen::Matrix2d InnovationCovariance(int landmark, const Eigen::Matrix<double, 2, 3>& H_x,
-                                       const Eigen::Matrix2d& H_l, const Eigen::Matrix2d& R) const;
-  AssociationDecision AssociateNearest(const PointObservation& obs,
-                                       const std::vector<char>& used) const;
-  AssociationDecision AssociateKnown(const PointObservation& obs) const;
-  void Reserve(int state_size);
+  class ScanContext;
+  static constexpr int kPoseBlock = 0;
+  int BlockOf(int landmark) const { return landmark_blocks_[landmark]; }
+  Linearisation LinearisePoint(int landmark, const PointObservation& obs) const;
+  MatchedObservation Matched(int landmark, const PointObservation& obs) const;
+  // The steps of SPEC S2 / S1 on `part` of a scan (all of it, or one observation).
+  void RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
+                   std::vector<AssociationDecision>& decisions);
+  void SelectAndUpdate(std::span<const PointObservation> part,
+                       const std::vector<AssociationDecision>& decided);
+  void AugmentNew(std::span<const PointObservation> part, std::vector<AssociationDecision> decided,
+                  std::vector<char>& taken, std::vector<AssociationDecision>& decisions);
 
   EkfSlamParams params_;
   std::unique_ptr<MotionModel> motion_;
   std::unique_ptr<PointSensorModel> sensor_;
-  NearestNeighbourAssociator associator_;
-  int n_ = 3;
-  Eigen::VectorXd x_;  // capacity-sized; the first n_ entries are the state
-  Eigen::MatrixXd P_;  // capacity-sized; upper triangle of the leading n_×n_ block is valid
-  Eigen::MatrixXd U_;  // capacity rows; the first m_ columns are the deferred downdate factor
-  Eigen::MatrixXd pose_cols_;  // capacity×3: the current pose columns while m_ > 0
-  int m_ = 0;
+  std::unique_ptr<Associator> associator_;
+  std::unique_ptr<SelectionPolicy> selection_;
+  BlockEkf ekf_;
+  int point_kind_ = -1;
+  PointLandmarkModel point_model_;
+  std::vector<int> landmark_blocks_;
   std::vector<LandmarkId> source_ids_;
   std::unordered_map<LandmarkId, int> index_of_id_;
-  mutable std::vector<AssociationCandidate> candidates_;  // scratch, reused across calls
 };
 
 }  // namespace slamkit

@@ -1,0 +1,168 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <span>
+#include <vector>
+
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/models/motion_model.hpp"
+
+namespace slamkit {
+
+// Largest dimension of one state block or one observation (an SE(2) pose, a relative-pose
+// measurement). Small matrices are bounded by it so that they live on the stack.
+inline constexpr int kMaxBlockDim = 3;
+// Largest number of state blocks one observation or one new block depends on.
+inline constexpr int kMaxObservedBlocks = 4;
+
+using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxBlockDim, 1>;
+using BlockMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockDim, kMaxBlockDim>;
+
+// What one kind of block in the state is: its dimension and which of its components are angles
+// (kept wrapped to [-π, π) after every update). Pose blocks get their covariance columns cached
+// during a deferred update, since nearly every observation touches a pose.
+struct BlockKind {
+  int dim = 2;
+  std::vector<int> angle_components;
+  bool is_pose = false;
+};
+
+// The SE(2) vehicle pose (x, y, θ): the kind every BlockEkf registers first, as kind 0.
+inline constexpr int kPoseKind = 0;
+
+// The derivative of a function (a prediction, a new block) with respect to one state block.
+struct BlockJacobian {
+  int block = -1;
+  BlockMatrix J;  // output dim × the block's dim
+};
+
+// A short list of block Jacobians (an observation touches a few blocks), kept on the stack.
+struct BlockJacobians {
+  std::array<BlockJacobian, kMaxObservedBlocks> items;
+  int size = 0;
+
+  void Add(int block, const BlockMatrix& J) { items[size++] = {block, J}; }
+  std::span<const BlockJacobian> view() const { return {items.data(), std::size_t(size)}; }
+};
+
+// An observation linearised at the current mean: ν = z − h(x̂) (angles wrapped), the Jacobian
+// of h with respect to each block it touches (zero elsewhere) and the measurement noise R.
+struct Linearisation {
+  BlockVector innovation;
+  BlockJacobians H;
+  BlockMatrix R;
+};
+
+// EKF on a state made of blocks: vehicle poses and landmarks of several kinds (SPEC S1 item 1,
+// S2, S3), x = [b_0, b_1, …], each block a contiguous segment.
+//
+// Only the upper triangle of the covariance is stored and updated: prediction touches one pose's
+// rows (O(n)), each observation's sequential update is a symmetric rank-m downdate of that
+// triangle (O(n²)), and augmentation appends a block's columns (O(n)).
+//
+// Updates are deferred: the covariance is kept as P₀ − U Uᵀ, each observation reads the few
+// columns it needs through that correction (O(n·m)) and appends its columns to U, and the
+// downdate P₀ − U Uᵀ is applied in one pass over the triangle by ApplyPendingDowndate() (called
+// by whatever needs the stored triangle: prediction, growth, the filter at the end of a scan).
+// The result is the sequential EKF's: each observation is linearised at the mean its
+// predecessors left.
+class BlockEkf {
+ public:
+  explicit BlockEkf(int initial_capacity = 64);
+
+  // Registers a block kind; returns its id. Kind 0 is the pose (kPoseKind).
+  int RegisterKind(const BlockKind& kind);
+  const BlockKind& kind(int id) const { return kinds_[id]; }
+
+  // Empties the state, keeping the kinds registered and the storage allocated.
+  void Clear();
+  // Appends a block uncorrelated with the rest (a vehicle's start pose); returns its index.
+  int AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov);
+  // SPEC S2, Eq. 8 (state augmentation): appends the block b = g(x_{observing}, z) with
+  // covariance Σ_jk J_j P_jk J_kᵀ + J_z R J_zᵀ and cross-covariance Σ_j J_j P_j·.
+  int Augment(int kind, const BlockVector& mean, std::span<const BlockJacobian> J_new_blocks,
+              const BlockMatrix& J_new_z, const BlockMatrix& R);
+
+  // SPEC S2, Eq. 2: pose block `block` moves to `moved`; P_bb ← F P_bb Fᵀ + G Q Gᵀ and the
+  // block's cross-covariances ← F P_b·.
+  void PredictPose(int block, const Pose2& moved, const Eigen::Matrix3d& J_x_x,
+                   const ControlJacobian& J_x_u, const ControlCovariance& Q);
+
+  // One sequential EKF update (deferred); false if S was not positive definite (nothing done).
+  bool Update(const Linearisation& obs);
+  // S = H P Hᵀ + R of `obs` against the current posterior; O(1) in n.
+  BlockMatrix InnovationCovariance(const Linearisation& obs) const;
+  // The squared Mahalanobis distance νᵀ S⁻¹ ν of `obs` (SPEC S2, Eqs. 6-7).
+  double MahalanobisSquared(const Linearisation& obs) const;
+  // The joint innovation covariance of several observations (a joint-compatibility test):
+  // block (i, j) is H_i P H_jᵀ, plus R_i on the diagonal.
+  Eigen::MatrixXd JointInnovationCovariance(std::span<const Linearisation> obs) const;
+  // P₀ ← P₀ − U Uᵀ on the upper triangle, in fixed column blocks run in parallel.
+  void ApplyPendingDowndate();
+  bool HasPendingDowndate() const { return m_ > 0; }
+
+  int NumBlocks() const { return static_cast<int>(blocks_.size()); }
+  int BlockKindOf(int block) const { return blocks_[block].kind; }
+  int BlockOffset(int block) const { return blocks_[block].offset; }
+  int BlockDim(int block) const { return blocks_[block].dim; }
+  int StateSize() const { return n_; }
+  // Entries allocated for the state; it grows by doubling beyond this.
+  int Capacity() const { return static_cast<int>(x_.size()); }
+  auto Mean(int block) const { return x_.segment(blocks_[block].offset, blocks_[block].dim); }
+  Pose2 PoseOf(int block) const { return Pose2(x_.segment<3>(blocks_[block].offset)); }
+  // Covariance block (a, b) of the current posterior (through any pending downdate).
+  Eigen::MatrixXd CovarianceBlock(int a, int b) const;
+  // The full symmetric covariance and the mean (copies; O(n²), for tests and output).
+  Eigen::MatrixXd Covariance() const;
+  Eigen::VectorXd State() const { return x_.head(n_); }
+
+ private:
+  struct Block {
+    int kind;
+    int offset;
+    int dim;
+  };
+  // Columns [c, c+k) of the current covariance P₀ − U Uᵀ, gathered from the stored triangle.
+  Eigen::MatrixXd CurrentColumns(int c, int k) const;
+  // The current columns of block `block`: cached for pose blocks while downdates are pending.
+  // A view of the cache, or of `scratch` holding the gathered columns.
+  Eigen::Ref<const Eigen::MatrixXd> BlockColumns(int block, Eigen::MatrixXd& scratch) const;
+  // Rows [r, r+R) × columns [c, c+C) of the current covariance, r + R <= c or r == c.
+  template <int R, int C>
+  Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
+  template <int R, int C>
+  Eigen::Matrix<double, R, C> CurrentBlockOf(int a, int b) const;
+  template <int kZ>
+  bool UpdateFixed(const Linearisation& obs);
+  template <int kZ>
+  Eigen::Matrix<double, Eigen::Dynamic, kZ> CovarianceTimesHt(const Linearisation& obs) const;
+  template <int kZ>
+  Eigen::Matrix<double, kZ, kZ> InnovationCovarianceFixed(const Linearisation& obs) const;
+  template <int kZ>
+  Eigen::Matrix<double, kZ, kZ> InnovationCovarianceFromPHt(
+      const Linearisation& obs, const Eigen::Matrix<double, Eigen::Dynamic, kZ>& PHt) const;
+  template <int kD>
+  void CachePoseRowsOfNewBlock(std::span<const BlockJacobian> J_new_blocks);
+  template <int kD>
+  void AugmentFixed(const BlockVector& mean, std::span<const BlockJacobian> J_new_blocks,
+                    const BlockMatrix& J_new_z, const BlockMatrix& R);
+  void StartPoseCache();
+  void Reserve(int state_size);
+  void WrapAngles();
+
+  std::vector<BlockKind> kinds_;
+  std::vector<Block> blocks_;
+  std::vector<int> pose_blocks_;    // indices into blocks_; pose_cols_ holds 3 columns each
+  std::vector<int> pose_slot_;      // per block: its 3-column slot in pose_cols_, or -1
+  std::vector<int> angle_indices_;  // state indices that are angles
+  int n_ = 0;
+  Eigen::VectorXd x_;  // capacity-sized; the first n_ entries are the state
+  Eigen::MatrixXd P_;  // capacity-sized; upper triangle of the leading n_×n_ block is valid
+  Eigen::MatrixXd U_;  // capacity rows; the first m_ columns are the deferred downdate factor
+  Eigen::MatrixXd pose_cols_;  // capacity × 3·poses: current pose columns while m_ > 0
+  int m_ = 0;
+};
+
+}  // namespace slamkit

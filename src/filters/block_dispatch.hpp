@@ -1,0 +1,24 @@
+#pragma once
+
+#include <type_traits>
+
+#include "slamkit/filters/block_ekf.hpp"
+
+namespace slamkit::internal {
+
+// Calls f(std::integral_constant<int, d>) for d in 1..kMaxBlockDim, so that the small matrices of
+// an update have fixed sizes (stack storage, unrolled products) whatever the block kind.
+template <typename F>
+decltype(auto) WithDim(int d, F&& f) {
+  static_assert(kMaxBlockDim == 3, "extend the cases below");
+  switch (d) {
+    case 1:
+      return f(std::integral_constant<int, 1>{});
+    case 2:
+      return f(std::integral_constant<int, 2>{});
+    default:
+      return f(std::integral_constant<int, 3>{});
+  }
+}
+
+}  // namespace slamkit::internal

@@ -1,0 +1,142 @@
+#include "slamkit/filters/block_ekf.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <stdexcept>
+
+#include "slamkit/core/angle.hpp"
+
+namespace slamkit {
+
+BlockEkf::BlockEkf(int initial_capacity) {
+  RegisterKind({3, {2}, true});
+  const int capacity = std::max(initial_capacity, 3);
+  x_ = Eigen::VectorXd::Zero(capacity);
+  P_ = Eigen::MatrixXd::Zero(capacity, capacity);
+  U_ = Eigen::MatrixXd::Zero(capacity, 8);
+}
+
+int BlockEkf::RegisterKind(const BlockKind& kind) {
+  if (kind.dim < 1 || kind.dim > kMaxBlockDim || (kind.is_pose && kind.dim != 3)) {
+    throw std::invalid_argument("BlockEkf::RegisterKind: unsupported block dimension");
+  }
+  kinds_.push_back(kind);
+  return static_cast<int>(kinds_.size()) - 1;
+}
+
+void BlockEkf::Clear() {
+  x_.setZero();
+  P_.setZero();
+  U_.setZero();
+  pose_cols_.resize(0, 0);
+  blocks_.clear();
+  pose_blocks_.clear();
+  pose_slot_.clear();
+  angle_indices_.clear();
+  n_ = 0;
+  m_ = 0;
+}
+
+void BlockEkf::Reserve(int state_size) {
+  const int capacity = static_cast<int>(x_.size());
+  if (state_size <= capacity) return;
+  ApplyPendingDowndate();  // growth is rare (doubling): simpler than carrying U over
+  const int grown = std::max(state_size, 2 * capacity);
+  U_ = Eigen::MatrixXd::Zero(grown, U_.cols());
+  pose_cols_ = Eigen::MatrixXd::Zero(grown, pose_cols_.cols());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(grown);
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(grown, grown);
+  x.head(n_) = x_.head(n_);
+  P.topLeftCorner(n_, n_).triangularView<Eigen::Upper>() = P_.topLeftCorner(n_, n_);
+  x_.swap(x);
+  P_.swap(P);
+}
+
+int BlockEkf::AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov) {
+  const int dim = kinds_[kind].dim;
+  Reserve(n_ + dim);
+  const int index = NumBlocks();
+  blocks_.push_back({kind, n_, dim});
+  pose_slot_.push_back(-1);
+  for (const int a : kinds_[kind].angle_components) angle_indices_.push_back(n_ + a);
+  P_.block(0, n_, n_, dim).setZero();
+  P_.block(n_, n_, dim, dim) = cov;
+  U_.block(n_, 0, dim, m_).setZero();
+  x_.segment(n_, dim) = mean;
+  n_ += dim;
+  if (kinds_[kind].is_pose) {
+    // A new pose slot: the cache is rebuilt from the current columns at the next update.
+    ApplyPendingDowndate();
+    pose_slot_[index] = static_cast<int>(pose_blocks_.size());
+    pose_blocks_.push_back(index);
+    pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
+  } else if (m_ > 0 && !pose_blocks_.empty()) {
+    pose_cols_.middleRows(n_ - dim, dim).setZero();
+  }
+  return index;
+}
+
+Eigen::MatrixXd BlockEkf::CurrentColumns(int c, int k) const {
+  Eigen::MatrixXd cols(n_, k);
+  cols.topRows(c) = P_.block(0, c, c, k);
+  cols.middleRows(c, k) = P_.block(c, c, k, k).selfadjointView<Eigen::Upper>();
+  const int below = n_ - c - k;
+  cols.bottomRows(below) = P_.block(c, c + k, k, below).transpose();
+  if (m_ > 0) {
+    // Column by column (axpy over n): a GEMM call would repack all of U for these k columns.
+    for (int j = 0; j < m_; ++j) {
+      const auto u = U_.col(j).head(n_);
+      for (int q = 0; q < k; ++q) cols.col(q) -= U_(c + q, j) * u;
+    }
+  }
+  return cols;
+}
+
+Eigen::Ref<const Eigen::MatrixXd> BlockEkf::BlockColumns(int block,
+                                                         Eigen::MatrixXd& scratch) const {
+  const Block& b = blocks_[block];
+  const int slot = pose_slot_[block];
+  if (m_ > 0 && slot >= 0) return pose_cols_.block(0, 3 * slot, n_, 3);
+  scratch = CurrentColumns(b.offset, b.dim);
+  return scratch;
+}
+
+void BlockEkf::StartPoseCache() {
+  for (const int p : pose_blocks_) {
+    pose_cols_.block(0, 3 * pose_slot_[p], n_, 3) = CurrentColumns(blocks_[p].offset, 3);
+  }
+}
+
+// SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1): only the moving pose's rows change.
+void BlockEkf::PredictPose(int block, const Pose2& moved, const Eigen::Matrix3d& J_x_x,
+                           const ControlJacobian& J_x_u, const ControlCovariance& Q) {
+  ApplyPendingDowndate();
+  const Eigen::Matrix3d& F = J_x_x;
+  const ControlJacobian& G = J_x_u;
+  const int o = blocks_[block].offset;
+  const Eigen::Matrix3d P_vv = P_.block<3, 3>(o, o).selfadjointView<Eigen::Upper>();
+  P_.block<3, 3>(o, o) = F * P_vv * F.transpose() + G * Q * G.transpose();
+  if (o > 0) {
+    // Column block: the cross-covariances with blocks before the pose.
+    auto P_mv = P_.block(0, o, o, 3);
+    P_mv = (P_mv * F.transpose()).eval();
+  }
+  if (n_ > o + 3) {
+    // Row block: the cross-covariances with blocks after the pose.
+    auto P_vm = P_.block(o, o + 3, 3, n_ - o - 3);
+    P_vm = (F * P_vm).eval();
+  }
+  x_.segment<3>(o) = moved.vector();
+}
+
+void BlockEkf::WrapAngles() {
+  for (const int i : angle_indices_) x_[i] = WrapAngle(x_[i]);
+}
+
+Eigen::MatrixXd BlockEkf::Covariance() const {
+  Eigen::MatrixXd P = P_.topLeftCorner(n_, n_).selfadjointView<Eigen::Upper>();
+  if (m_ > 0) P.noalias() -= U_.topLeftCorner(n_, m_) * U_.topLeftCorner(n_, m_).transpose();
+  return P;
+}
+
+}  // namespace slamkit
