@@ -102,6 +102,8 @@ class EkfSlam final : public LandmarkSlamFilter {
   static constexpr int kPoseBlock = 0;
   int BlockOf(int landmark) const { return landmark_blocks_[landmark]; }
   Linearisation LinearisePoint(int landmark, const PointObservation& obs) const;
+  double PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
+                       const Eigen::Matrix3d& P_pose) const;
   MatchedObservation Matched(int landmark, const PointObservation& obs) const;
   // The steps of SPEC S2 / S1 on `part` of a scan (all of it, or one observation).
   void RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
