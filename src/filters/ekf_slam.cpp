@@ -46,12 +46,13 @@ class EkfSlam::ScanContext final : public AssociationContext {
   const PointObservation& Observation(int i) const override { return observations_[i]; }
   int NumLandmarks() const override { return slam_.NumLandmarks(); }
   std::span<const AssociationCandidate> Candidates(int i) const override {
-    candidates_.clear();
+    std::vector<AssociationCandidate>& candidates = slam_.candidate_scratch_;
+    candidates.clear();
     for (int l = 0; l < slam_.NumLandmarks(); ++l) {
       if (taken_[l] || !gate_.Passes(slam_.LandmarkPosition(l))) continue;
-      candidates_.push_back({l, Distance(i, l)});
+      candidates.push_back({l, Distance(i, l)});
     }
-    return candidates_;
+    return candidates;
   }
   int LandmarkWithSourceId(LandmarkId id) const override {
     const auto it = slam_.index_of_id_.find(id);
@@ -79,7 +80,6 @@ class EkfSlam::ScanContext final : public AssociationContext {
   Pose2 pose_;
   Eigen::Matrix3d P_pose_;
   PointLandmarkModel::ReachGate gate_;
-  mutable std::vector<AssociationCandidate> candidates_;  // scratch for Candidates()
 };
 
 EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motion,

@@ -124,6 +124,9 @@ class EkfSlam final : public LandmarkSlamFilter {
   std::vector<int> landmark_blocks_;
   std::vector<LandmarkId> source_ids_;
   std::unordered_map<LandmarkId, int> index_of_id_;
+  // Scratch for ScanContext::Candidates(): a context lives for one observation on the
+  // per-observation schedule, so a buffer of its own would be reallocated for each.
+  mutable std::vector<AssociationCandidate> candidate_scratch_;
 };
 
 }  // namespace slamkit
