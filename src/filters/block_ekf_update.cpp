@@ -151,6 +151,21 @@ bool BlockEkf::Update(const Linearisation& obs) {
                  [&](auto Z) { return UpdateFixed<decltype(Z)::value>(obs); });
 }
 
+// S of an observation of two blocks a and b given P_aa: the one expression both the generic
+// path and the association fast path evaluate, so that their distances agree bit for bit.
+template <int kZ, int kD0, int kD1>
+Eigen::Matrix<double, kZ, kZ> BlockEkf::TwoBlockS(const Eigen::Matrix<double, kD0, kD0>& P_00,
+                                                  int a, int b,
+                                                  const Eigen::Matrix<double, kZ, kD0>& J_0,
+                                                  const Eigen::Matrix<double, kZ, kD1>& J_1,
+                                                  const Eigen::Matrix<double, kZ, kZ>& R) const {
+  const Eigen::Matrix<double, kD0, kD1> P_01 = CurrentBlockOf<kD0, kD1>(a, b);
+  const Eigen::Matrix<double, kD1, kD1> P_11 = CurrentBlockOf<kD1, kD1>(b, b);
+  const Eigen::Matrix<double, kZ, kZ> cross = J_0 * P_01 * J_1.transpose();
+  return J_0 * P_00 * J_0.transpose() + cross + cross.transpose() +
+         J_1 * P_11 * J_1.transpose() + R;
+}
+
 // S = H P Hᵀ + R from the few covariance blocks H touches, O(1) in n.
 template <int kZ>
 Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearisation& obs) const {
@@ -166,13 +181,7 @@ Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearis
         const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
         const Eigen::Matrix<double, kD0, kD0> P_00 =
             CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
-        const Eigen::Matrix<double, kD0, kD1> P_01 =
-            CurrentBlockOf<kD0, kD1>(H[0].block, H[1].block);
-        const Eigen::Matrix<double, kD1, kD1> P_11 =
-            CurrentBlockOf<kD1, kD1>(H[1].block, H[1].block);
-        const MatrixZ cross = J_0 * P_01 * J_1.transpose();
-        S = J_0 * P_00 * J_0.transpose() + cross + cross.transpose() +
-            J_1 * P_11 * J_1.transpose() + R;
+        S = TwoBlockS<kZ, kD0, kD1>(P_00, H[0].block, H[1].block, J_0, J_1, R);
       });
     });
     return S;
@@ -189,6 +198,19 @@ BlockMatrix BlockEkf::InnovationCovariance(const Linearisation& obs) const {
   return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) -> BlockMatrix {
     return InnovationCovarianceFixed<decltype(Z)::value>(obs);
   });
+}
+
+Eigen::Matrix3d BlockEkf::PoseCovarianceOf(int block) const {
+  return CurrentBlockOf<3, 3>(block, block);
+}
+
+// Flattened: it runs for every landmark within reach of every observation, and out of line the
+// small products and the 2×2 LLT cost as much in calls as in arithmetic.
+__attribute__((flatten)) double BlockEkf::MahalanobisSquaredPosePoint(
+    const PosePointObservation& obs) const {
+  const Eigen::Matrix2d S =
+      TwoBlockS<2, 3, 2>(*obs.P_pose, obs.pose, obs.point, obs.J_pose, obs.J_point, *obs.R);
+  return obs.innovation.dot(S.llt().solve(obs.innovation));
 }
 
 double BlockEkf::MahalanobisSquared(const Linearisation& obs) const {

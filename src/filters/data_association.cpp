@@ -34,14 +34,14 @@ std::vector<AssociationDecision> NearestNeighbourAssociator::Associate(
     const AssociationContext& scan) {
   std::vector<AssociationDecision> decisions;
   decisions.reserve(scan.NumObservations());
-  std::vector<char> taken(scan.NumLandmarks(), 0);
+  taken_.assign(scan.NumLandmarks(), 0);
   for (int i = 0; i < scan.NumObservations(); ++i) {
     free_.clear();
     for (const AssociationCandidate& c : scan.Candidates(i)) {
-      if (!taken[c.landmark]) free_.push_back(c);
+      if (!taken_[c.landmark]) free_.push_back(c);
     }
     const AssociationDecision d = Associate(free_);
-    if (d.kind == AssociationDecision::Kind::kMatched) taken[d.landmark] = 1;
+    if (d.kind == AssociationDecision::Kind::kMatched) taken_[d.landmark] = 1;
     decisions.push_back(d);
   }
   return decisions;

@@ -31,28 +31,35 @@ std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params) {
 // Landmarks taken earlier in the scan are no candidates.
 class EkfSlam::ScanContext final : public AssociationContext {
  public:
+  // The posterior does not change while the associator runs: the pose, its covariance and the
+  // reach gate are computed here once for all observations and candidates.
   ScanContext(const EkfSlam& slam, std::span<const PointObservation> observations,
               const std::vector<char>& taken)
-      : slam_(slam), observations_(observations), taken_(taken) {}
+      : slam_(slam),
+        observations_(observations),
+        taken_(taken),
+        pose_(slam.pose()),
+        P_pose_(slam.ekf_.PoseCovarianceOf(kPoseBlock)),
+        gate_(slam.point_model_.GateFrom(pose_)) {}
 
   int NumObservations() const override { return static_cast<int>(observations_.size()); }
   const PointObservation& Observation(int i) const override { return observations_[i]; }
   int NumLandmarks() const override { return slam_.NumLandmarks(); }
   std::span<const AssociationCandidate> Candidates(int i) const override {
-    candidates_.clear();
+    std::vector<AssociationCandidate>& candidates = slam_.candidate_scratch_;
+    candidates.clear();
     for (int l = 0; l < slam_.NumLandmarks(); ++l) {
-      const int blocks[] = {kPoseBlock, slam_.BlockOf(l)};
-      if (taken_[l] || !slam_.point_model_.Gate(slam_.ekf_, blocks)) continue;
-      candidates_.push_back({l, Distance(i, l)});
+      if (taken_[l] || !gate_.Passes(slam_.LandmarkPosition(l))) continue;
+      candidates.push_back({l, Distance(i, l)});
     }
-    return candidates_;
+    return candidates;
   }
   int LandmarkWithSourceId(LandmarkId id) const override {
     const auto it = slam_.index_of_id_.find(id);
     return it == slam_.index_of_id_.end() ? -1 : it->second;
   }
   double Distance(int i, int landmark) const override {
-    return slam_.MahalanobisDistance(landmark, observations_[i]);
+    return slam_.PointDistance(landmark, observations_[i], pose_, P_pose_);
   }
   JointInnovation Joint(std::span<const Pairing> hypothesis) const override {
     std::vector<Linearisation> parts;
@@ -70,7 +77,9 @@ class EkfSlam::ScanContext final : public AssociationContext {
   const EkfSlam& slam_;
   std::span<const PointObservation> observations_;
   const std::vector<char>& taken_;
-  mutable std::vector<AssociationCandidate> candidates_;  // scratch for Candidates()
+  Pose2 pose_;
+  Eigen::Matrix3d P_pose_;
+  PointLandmarkModel::ReachGate gate_;
 };
 
 EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motion,
@@ -121,7 +130,20 @@ MatchedObservation EkfSlam::Matched(int landmark, const PointObservation& obs) c
 }
 
 double EkfSlam::MahalanobisDistance(int landmark, const PointObservation& obs) const {
-  return ekf_.MahalanobisSquared(LinearisePoint(landmark, obs));
+  return PointDistance(landmark, obs, pose(), ekf_.PoseCovarianceOf(kPoseBlock));
+}
+
+// The generic MahalanobisSquared(LinearisePoint()) at fixed sizes, with the pose and its
+// covariance supplied by the caller (association hoists them out of its candidate loop).
+double EkfSlam::PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
+                              const Eigen::Matrix3d& P_pose) const {
+  PosePointObservation o;
+  o.pose = kPoseBlock;
+  o.point = BlockOf(landmark);
+  o.R = &obs.R;
+  o.P_pose = &P_pose;
+  point_model_.LinearisePosePoint(x, LandmarkPosition(landmark), obs.z, o);
+  return ekf_.MahalanobisSquaredPosePoint(o);
 }
 
 // SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time).

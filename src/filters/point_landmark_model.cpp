@@ -30,10 +30,19 @@ BlockInversion PointLandmarkModel::Invert(const BlockEkf& ekf, std::span<const i
 }
 
 bool PointLandmarkModel::Gate(const BlockEkf& ekf, std::span<const int> blocks) const {
-  const Eigen::Vector2d position = ekf.PoseOf(blocks[0]).translation();
-  const Eigen::Vector2d l = ekf.Mean(blocks[1]);
+  return GateFrom(ekf.PoseOf(blocks[0])).Passes(ekf.Mean(blocks[1]));
+}
+
+PointLandmarkModel::ReachGate PointLandmarkModel::GateFrom(const Pose2& observer) const {
   const double reach = sensor_->MaxRange() + margin_m_;
-  return (l - position).squaredNorm() <= reach * reach;
+  return {observer.translation(), reach * reach};
+}
+
+void PointLandmarkModel::LinearisePosePoint(const Pose2& observer, const Eigen::Vector2d& l,
+                                            const Eigen::Vector2d& z,
+                                            PosePointObservation& out) const {
+  const Eigen::Vector2d z_pred = sensor_->Predict(observer, l, &out.J_pose, &out.J_point);
+  out.innovation = sensor_->Innovation(z, z_pred);
 }
 
 }  // namespace slamkit

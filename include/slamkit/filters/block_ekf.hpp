@@ -55,6 +55,19 @@ struct Linearisation {
   BlockMatrix R;
 };
 
+// A 2-D observation of one point block from one pose block at fixed sizes: what association
+// scores against every landmark. The pose's current covariance is computed once by the caller
+// (PoseCovarianceOf) and shared by all candidates, rather than once per candidate.
+struct PosePointObservation {
+  int pose = -1;
+  int point = -1;
+  Eigen::Vector2d innovation;
+  Eigen::Matrix<double, 2, 3> J_pose;
+  Eigen::Matrix2d J_point;
+  const Eigen::Matrix2d* R = nullptr;
+  const Eigen::Matrix3d* P_pose = nullptr;
+};
+
 // EKF on a state made of blocks: vehicle poses and landmarks of several kinds (SPEC S1 item 1,
 // S2, S3), x = [b_0, b_1, …], each block a contiguous segment.
 //
@@ -96,6 +109,11 @@ class BlockEkf {
   BlockMatrix InnovationCovariance(const Linearisation& obs) const;
   // The squared Mahalanobis distance νᵀ S⁻¹ ν of `obs` (SPEC S2, Eqs. 6-7).
   double MahalanobisSquared(const Linearisation& obs) const;
+  // The current covariance of 3-dim block `block` (a pose), to hoist out of a candidate loop.
+  Eigen::Matrix3d PoseCovarianceOf(int block) const;
+  // MahalanobisSquared() of a pose-point observation, bit for bit, without the generic
+  // Linearisation (no dispatch on dimensions, no per-candidate pose block).
+  double MahalanobisSquaredPosePoint(const PosePointObservation& obs) const;
   // The joint innovation covariance of several observations (a joint-compatibility test):
   // block (i, j) is H_i P H_jᵀ, plus R_i on the diagonal.
   Eigen::MatrixXd JointInnovationCovariance(std::span<const Linearisation> obs) const;
@@ -134,6 +152,11 @@ class BlockEkf {
   Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
   template <int R, int C>
   Eigen::Matrix<double, R, C> CurrentBlockOf(int a, int b) const;
+  template <int kZ, int kD0, int kD1>
+  Eigen::Matrix<double, kZ, kZ> TwoBlockS(const Eigen::Matrix<double, kD0, kD0>& P_00, int a,
+                                          int b, const Eigen::Matrix<double, kZ, kD0>& J_0,
+                                          const Eigen::Matrix<double, kZ, kD1>& J_1,
+                                          const Eigen::Matrix<double, kZ, kZ>& R) const;
   template <int kZ>
   bool UpdateFixed(const Linearisation& obs);
   template <int kZ>

@@ -88,6 +88,7 @@ class NearestNeighbourAssociator final : public Associator {
  private:
   AssociationParams params_;
   std::vector<AssociationCandidate> free_;  // scratch, reused across scans
+  std::vector<char> taken_;                 // scratch, reused across scans
 };
 
 // The observation's id names its landmark (simulator truth, a data set's association): the

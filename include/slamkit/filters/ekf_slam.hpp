@@ -102,6 +102,8 @@ class EkfSlam final : public LandmarkSlamFilter {
   static constexpr int kPoseBlock = 0;
   int BlockOf(int landmark) const { return landmark_blocks_[landmark]; }
   Linearisation LinearisePoint(int landmark, const PointObservation& obs) const;
+  double PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
+                       const Eigen::Matrix3d& P_pose) const;
   MatchedObservation Matched(int landmark, const PointObservation& obs) const;
   // The steps of SPEC S2 / S1 on `part` of a scan (all of it, or one observation).
   void RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
@@ -122,6 +124,9 @@ class EkfSlam final : public LandmarkSlamFilter {
   std::vector<int> landmark_blocks_;
   std::vector<LandmarkId> source_ids_;
   std::unordered_map<LandmarkId, int> index_of_id_;
+  // Scratch for ScanContext::Candidates(): a context lives for one observation on the
+  // per-observation schedule, so a buffer of its own would be reallocated for each.
+  mutable std::vector<AssociationCandidate> candidate_scratch_;
 };
 
 }  // namespace slamkit
