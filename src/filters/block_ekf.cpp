@@ -55,14 +55,24 @@ void BlockEkf::Reserve(int state_size) {
 int BlockEkf::AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov) {
   const int dim = kinds_[kind].dim;
   Reserve(n_ + dim);
-  const int index = NumBlocks();
-  blocks_.push_back({kind, n_, dim});
-  pose_slot_.push_back(-1);
-  for (const int a : kinds_[kind].angle_components) angle_indices_.push_back(n_ + a);
   P_.block(0, n_, n_, dim).setZero();
   P_.block(n_, n_, dim, dim) = cov;
   U_.block(n_, 0, dim, m_).setZero();
   x_.segment(n_, dim) = mean;
+  const int index = AppendBlock(kind);
+  if (!kinds_[kind].is_pose && m_ > 0 && !pose_blocks_.empty()) {
+    pose_cols_.middleRows(n_ - dim, dim).setZero();
+  }
+  return index;
+}
+
+// Records a block whose mean and covariance are already written at offset n_.
+int BlockEkf::AppendBlock(int kind) {
+  const int dim = kinds_[kind].dim;
+  const int index = NumBlocks();
+  blocks_.push_back({kind, n_, dim});
+  pose_slot_.push_back(-1);
+  for (const int a : kinds_[kind].angle_components) angle_indices_.push_back(n_ + a);
   n_ += dim;
   if (kinds_[kind].is_pose) {
     // A new pose slot: the cache is rebuilt from the current columns at the next update.
@@ -70,8 +80,6 @@ int BlockEkf::AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov
     pose_slot_[index] = static_cast<int>(pose_blocks_.size());
     pose_blocks_.push_back(index);
     pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
-  } else if (m_ > 0 && !pose_blocks_.empty()) {
-    pose_cols_.middleRows(n_ - dim, dim).setZero();
   }
   return index;
 }

@@ -315,18 +315,7 @@ int BlockEkf::Augment(int kind, const BlockVector& mean,
   const int dim = kinds_[kind].dim;
   Reserve(n_ + dim);
   WithDim(dim, [&](auto D) { AugmentFixed<decltype(D)::value>(mean, J_new_blocks, J_new_z, R); });
-  const int index = NumBlocks();
-  blocks_.push_back({kind, n_, dim});
-  pose_slot_.push_back(-1);
-  for (const int a : kinds_[kind].angle_components) angle_indices_.push_back(n_ + a);
-  n_ += dim;
-  if (kinds_[kind].is_pose) {
-    ApplyPendingDowndate();
-    pose_slot_[index] = static_cast<int>(pose_blocks_.size());
-    pose_blocks_.push_back(index);
-    pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
-  }
-  return index;
+  return AppendBlock(kind);
 }
 
 }  // namespace slamkit

@@ -171,6 +171,7 @@ class BlockEkf {
   template <int kD>
   void AugmentFixed(const BlockVector& mean, std::span<const BlockJacobian> J_new_blocks,
                     const BlockMatrix& J_new_z, const BlockMatrix& R);
+  int AppendBlock(int kind);
   void StartPoseCache();
   void Reserve(int state_size);
   void WrapAngles();
