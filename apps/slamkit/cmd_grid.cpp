@@ -37,9 +37,10 @@ int RunGridCommand(const GridOptions& o) {
   if (o.max_scans > 0 && static_cast<int>(log.scans.size()) > o.max_scans) {
     log.scans.resize(o.max_scans);
   }
-  if (log.skipped_lines > 0) fmt::print(stderr, "{}: skipped {} bad lines\n", o.log, log.skipped_lines);
+  if (log.skipped_lines > 0) PrintStderr("{}: skipped {} bad lines\n", o.log, log.skipped_lines);
   std::vector<PoseRelation> relations;
   if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
+  PrepareOutputDir(o.out);
 
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
   const GridRunResult result =
@@ -84,11 +85,11 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   AddGridFilterOptions(cmd, o->params);
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
   cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
   cmd->add_option("--max-range", o->max_range_m,
                   "the laser's no-return range [m]: a reading at or above it is no return "
                   "(default: the log's PARAM, else its largest reading)")
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_flag("--interpolate-odometry", o->interpolate_odometry,
                 "odometry at each scan interpolated from the ODOM records at the scan's time, "
                 "instead of the scan record's own odometry fields");

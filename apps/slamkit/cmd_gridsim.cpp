@@ -76,6 +76,7 @@ void PrintSummary(const GridSimOptions& o, const GridSimResult& r) {
 
 int RunGridSimCommand(GridSimOptions o) {
   auto [plan, route] = PlanAndRoute(o);
+  PrepareOutputDir(o.out);
   o.sim.route = std::move(route);
   if (o.max_steps > 0) o.sim.max_steps = o.max_steps;
   o.sim.controller.max_turn_rate_radps =
@@ -90,7 +91,7 @@ int RunGridSimCommand(GridSimOptions o) {
       });
 
   if (o.max_steps == 0 && result.slam.scans > o.sim.max_steps) {
-    fmt::print(stderr, "note: the run stopped at the step limit ({}) before the route's end\n",
+    PrintStderr("note: the run stopped at the step limit ({}) before the route's end\n",
                o.sim.max_steps);
   }
 
@@ -120,14 +121,14 @@ void AddSimulationOptions(CLI::App* cmd, GridSimOptions& o) {
   cmd->add_option("--speed", o.sim.speed_mps, "robot speed [m/s] (turns keep a 0.5 m radius)")
       ->capture_default_str()->check(CLI::Range(0.1, 1.0));
   cmd->add_option("--odom-sigma-v", o.sim.sigma_v_mps, "odometry noise on the speed [m/s]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--odom-sigma-omega", o.sim.sigma_omega_radps,
                   "odometry noise on the turn rate [rad/s]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--max-steps", o.max_steps,
                   fmt::format("stop after N steps of {} s (0: the whole route, at most {})",
                               o.sim.dt_s, o.sim.max_steps))
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegativeNumber());
 }
 
 }  // namespace

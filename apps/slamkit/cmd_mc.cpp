@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/runners/outputs.hpp"
@@ -77,10 +78,11 @@ int RunMonteCarloCommand(const McOptions& options) {
   if (options.unknown_association) {
     config.ekf.association_method = AssociationMethod::kNearestNeighbour;
   }
+  PrepareOutputDir(options.out);
   MonteCarloParams params;
   params.runs = options.runs;
   params.seed = options.seed;
-  params.threads = options.threads;
+  params.threads = options.threads > 0 ? options.threads : UsableCpuCount();
   params.known_association = config.ekf.known_association();
   auto progress = std::make_shared<Progress>("runs", options.runs);
   params.progress = [progress](int done, int total) {
@@ -101,7 +103,7 @@ int RunMonteCarloCommand(const McOptions& options) {
 void AddCommonOptions(CLI::App& cmd, McOptions& o) {
   cmd.add_option("--runs", o.runs, "Monte Carlo runs")->check(CLI::Range(1, 100000));
   cmd.add_option("--seed", o.seed, "master seed: run k uses stream k of it");
-  cmd.add_option("--threads", o.threads, "worker threads (0: all cores)")
+  cmd.add_option("--threads", o.threads, "worker threads (0: all the CPUs this process may use)")
       ->check(CLI::Range(0, 1024));
   cmd.add_flag("--no-figures", o.no_figures, "skip the PNG figures");
   cmd.add_flag("--known-association", o.known_association, "use the simulator's landmark ids");

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "grid_common.hpp"
 #include "slamkit/runners/outputs.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/report/figures.hpp"
@@ -26,6 +27,7 @@ struct RunOptions {
 
 int RunIsamCommand(const RunOptions& o) {
   const IsamLog log = ReadIsamLog(o.isam);
+  PrepareOutputDir(o.out);
   IsamRunParams params;
   params.ekf.association_method =
       o.known_association ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
@@ -70,18 +72,18 @@ void RegisterRun(CLI::App& app, int& exit_code) {
   cmd->add_option("--odometry-cov-scale", o->odometry_covariance_scale,
                   "multiply the file's odometry covariances")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--sighting-cov-scale", o->sighting_covariance_scale,
                   "multiply the file's sighting covariances")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--gate-chi2", o->gate_chi2, "association gate (squared Mahalanobis)")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_option("--new-landmark-chi2", o->new_landmark_chi2,
                   "distance beyond which a sighting starts a new landmark")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(PositiveNumber());
   cmd->add_flag("--no-figures", o->no_figures, "skip the PNG figure");
   cmd->callback([o, &exit_code] { exit_code = RunIsamCommand(*o); });
 }

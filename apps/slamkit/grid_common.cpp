@@ -1,36 +1,93 @@
 #include "grid_common.hpp"
 
-#include <fmt/format.h>
+#include <stdlib.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <map>
 #include <string>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "slamkit/io/error.hpp"
 
 #include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/writers.hpp"
 
 namespace slamkit::app {
 
+namespace {
+
+CLI::Validator NumberCheck(const std::string& description, bool (*ok)(double)) {
+  return CLI::Validator(
+      [description, ok](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value)) {
+          return fmt::format("must be a number {}, got '{}'", description, text);
+        }
+        if (!std::isfinite(value) || !ok(value)) {
+          return fmt::format("must be {}, got {}", description, text);
+        }
+        return {};
+      },
+      "NUMBER " + description);
+}
+
+}  // namespace
+
+CLI::Validator PositiveNumber() {
+  return NumberCheck("> 0", [](double v) { return v > 0.0; });
+}
+
+CLI::Validator NonNegativeNumber() {
+  return NumberCheck(">= 0", [](double v) { return v >= 0.0; });
+}
+
+void PrepareOutputDir(const std::string& out) {
+  namespace fs = std::filesystem;
+  if (out.empty()) throw InputError("--out: the output directory is empty");
+  const fs::path dir(out);
+  std::error_code ec;
+  const fs::file_status status = fs::status(dir, ec);
+  if (fs::exists(status) && !fs::is_directory(status)) {
+    throw InputError(fmt::format("--out {}: exists and is not a directory", out));
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(fmt::format("--out {}: cannot create it: {}", out, ec.message()));
+  // Permissions alone do not tell (root, read-only or virtual file systems): try a file.
+  std::string probe = (dir / ".slamkit-probe-XXXXXX").string();
+  const int fd = mkstemp(probe.data());
+  if (fd < 0) {
+    throw InputError(fmt::format("--out {}: cannot write in it: {}", out, std::strerror(errno)));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
 void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
   cmd->add_option("--particles", p.particles, "particles")->capture_default_str()
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--seed", p.seed, "random seed of the filter")->capture_default_str();
   cmd->add_option("--linear-update", p.linear_update_m, "update after driving this far [m]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--angular-update", p.angular_update_rad, "update after turning this far [rad]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--usable-range", p.usable_range_m,
                   "laser range used [m]: in the maps, the matching and the tracking")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(PositiveNumber());
   cmd->add_option("--resolution", p.grid.resolution_m, "map cell size [m]")
-      ->capture_default_str()->check(CLI::PositiveNumber);
+      ->capture_default_str()->check(PositiveNumber());
   cmd->add_option("--srr", p.motion.srr, "odometry noise: m per m driven")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--srt", p.motion.srt, "odometry noise: m per rad turned")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--str", p.motion.str, "odometry noise: rad per m driven")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--stt", p.motion.stt, "odometry noise: rad per rad turned")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_flag_callback(
       "--match-proposal", [&p] { p.proposal = ProposalScheme::kScanMatch; },
       "take each particle's scan match as its pose (ROS GMapping) instead of drawing from the "
@@ -58,13 +115,13 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
   cmd->add_option("--tracking-prior-xy", p.tracking.prior_sigma_xy_m,
                   "tracking: sigma of the translation prior around the odometry guess [m] "
                   "(0: none)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--tracking-max-correction", p.tracking_max_correction_m,
                   "tracking: largest translation correction accepted [m]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--tracking-max-correction-angle", p.tracking_max_correction_rad,
                   "tracking: largest heading correction accepted [rad]")
-      ->capture_default_str()->check(CLI::NonNegativeNumber);
+      ->capture_default_str()->check(NonNegativeNumber());
 }
 
 void WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result) {

@@ -10,7 +10,17 @@
 
 namespace slamkit::app {
 
-// What `grid` and `gridsim` share: the filter's options, the output files and the summary.
+// What the commands share: number checks that say their range in words, the output directory's
+// check; and for `grid` and `gridsim`, the filter's options, the output files and the summary.
+
+// CLI11 checks for a number > 0 and >= 0 whose message says so ("must be > 0, got 0"), where
+// CLI::PositiveNumber's says "not in range 0.000000 to 1797693134862315708...".
+CLI::Validator PositiveNumber();
+CLI::Validator NonNegativeNumber();
+
+// Checks, before a run, that `out` (--out) can be the output directory: not empty, not an
+// existing non-directory, and creatable and writable. Creates it. Throws InputError naming it.
+void PrepareOutputDir(const std::string& out);
 
 // The RbpfGridSlam options.
 void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& params);

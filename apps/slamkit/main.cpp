@@ -1,13 +1,34 @@
 // slamkit: run, compare and reproduce 2D SLAM algorithms. `slamkit --help` lists the commands.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "slamkit/io/error.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+// Points a closed standard descriptor at /dev/null, so that no file the run opens takes its
+// number (and receives the summary or the progress lines). Returns whether it was closed.
+bool ReopenIfClosed(int fd, int flags) {
+  if (fcntl(fd, F_GETFD) != -1 || errno != EBADF) return false;
+  const int null_fd = open("/dev/null", flags);
+  if (null_fd >= 0 && null_fd != fd) {
+    dup2(null_fd, fd);
+    close(null_fd);
+  }
+  return true;
+}
+
+int Run(int argc, char** argv) {
   CLI::App app{"slamkit: 2D SLAM on simulated worlds and real robot logs"};
   app.require_subcommand(1);
   int exit_code = 0;
@@ -26,11 +47,39 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   } catch (const slamkit::InputError& e) {
-    fmt::print(stderr, "slamkit: error: {}\n", e.what());
+    slamkit::app::PrintStderr("slamkit: error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "slamkit: error: {}\n", e.what());
+    slamkit::app::PrintStderr("slamkit: error: {}\n", e.what());
     return 1;
+  }
+  return exit_code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ReopenIfClosed(STDIN_FILENO, O_RDONLY);
+  const bool stdout_closed = ReopenIfClosed(STDOUT_FILENO, O_WRONLY);
+  ReopenIfClosed(STDERR_FILENO, O_WRONLY);
+  // A closed pipe on stdout or stderr is an EPIPE error to handle, not a silent death.
+  std::signal(SIGPIPE, SIG_IGN);
+  int exit_code = 1;
+  try {
+    exit_code = Run(argc, argv);
+  } catch (...) {
+    slamkit::app::WriteStderr("slamkit: error: unexpected exception\n");
+    exit_code = 1;
+  }
+  // The summary is only in stdout's buffer until here: a lost summary is a failed run (the
+  // output files already written stay).
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0 && std::ferror(stdout) == 0;
+  if (stdout_closed || !flushed) {
+    const int error = stdout_closed ? EBADF : errno;
+    slamkit::app::PrintStderr("slamkit: error: cannot write to stdout: {}\n",
+                              error != 0 ? std::strerror(error) : "write error");
+    if (exit_code == 0) exit_code = 1;
   }
   return exit_code;
 }

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -15,12 +16,20 @@ namespace slamkit::testing {
 
 struct CliResult {
   int exit_code = -1;
-  std::string output;  // stdout and stderr together
+  std::string output;  // stdout (and stderr, for RunCli)
 };
 
-// Runs the slamkit binary with `args` through the shell and captures its output.
-inline CliResult RunCli(const std::string& args) {
-  const std::string command = std::string(SLAMKIT_CLI) + " " + args + " 2>&1";
+// The slamkit binary: $SLAMKIT_CLI if set (to run the tests against another build), else the
+// one built with the tests.
+inline std::string CliPath() {
+  const char* env = std::getenv("SLAMKIT_CLI");
+  return env && *env ? env : SLAMKIT_CLI;
+}
+
+// Runs `prefix` (e.g. "taskset -c 0 "), the slamkit binary and `command_after_cli` through the
+// shell and captures stdout only: the command redirects stderr as it likes.
+inline CliResult RunShell(const std::string& command_after_cli, const std::string& prefix = "") {
+  const std::string command = prefix + CliPath() + " " + command_after_cli;
   CliResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
@@ -31,6 +40,9 @@ inline CliResult RunCli(const std::string& args) {
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
+
+// Runs the slamkit binary with `args` through the shell and captures its output.
+inline CliResult RunCli(const std::string& args) { return RunShell(args + " 2>&1"); }
 
 // A fresh directory under the system temp directory, named after the running test.
 inline std::filesystem::path FreshDir(const std::string& name) {

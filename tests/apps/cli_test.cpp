@@ -142,5 +142,115 @@ TEST(Cli, OutputsAreIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(m1["per_run"].size(), 4u);
 }
 
+// Issue 8 item 2: a closed or full stderr must not abort the run (the progress printer and the
+// error handler write without throwing).
+TEST(Cli, ClosedOrFullStderrDoesNotAbort) {
+  const fs::path dir = FreshDir("stderr_closed");
+  int k = 0;
+  for (const char* redirect : {"2>&-", "2>/dev/full"}) {
+    for (const std::string& command :
+         {"mc --config " + kShort + " --runs 3 --no-figures --out ",
+          std::string("gridsim --particles 5 --max-steps 300 --out ")}) {
+      const fs::path out = dir / std::to_string(k++);
+      const auto r = testing::RunShell(command + out.string() + " " + redirect);
+      EXPECT_EQ(r.exit_code, 0) << command << redirect << "\n" << r.output;
+      EXPECT_NE(r.output.find("wrote"), std::string::npos) << command << redirect;
+      EXPECT_TRUE(fs::exists(out / "metrics.json")) << command << redirect;
+    }
+  }
+  // An error message to a closed or full stderr: still exit 2, no abort.
+  std::ofstream(dir / "bad.yaml") << "name: bad\nsensor:\n  max_range_m: fast\n";
+  for (const char* redirect : {"2>&-", "2>/dev/full"}) {
+    const auto r = testing::RunShell("mc --config " + (dir / "bad.yaml").string() + " --out " +
+                                     (dir / "x").string() + " " + redirect);
+    EXPECT_EQ(r.exit_code, 2) << redirect << "\n" << r.output;
+  }
+}
+
+// Issue 8 item 20: a summary that cannot be written to stdout is a failed run (exit 1, said on
+// stderr); the output files stay.
+TEST(Cli, ClosedOrFullStdoutExitsOne) {
+  const fs::path dir = FreshDir("stdout_full");
+  int k = 0;
+  for (const char* redirect : {"2>&1 >/dev/full", "2>&1 >&-"}) {
+    const fs::path out = dir / std::to_string(k++);
+    const auto r = testing::RunShell("mc --config " + kShort + " --runs 2 --no-figures --out " +
+                                     out.string() + " " + redirect);
+    EXPECT_EQ(r.exit_code, 1) << redirect << "\n" << r.output;
+    EXPECT_NE(r.output.find("stdout"), std::string::npos) << redirect << "\n" << r.output;
+    EXPECT_TRUE(fs::exists(out / "metrics.json")) << redirect;
+  }
+}
+
+// Issue 8 item 15: an --out that cannot be the output directory fails (exit 2, naming it)
+// before the run.
+TEST(Cli, UnusableOutExitsTwoBeforeTheRun) {
+  const fs::path dir = FreshDir("bad_out");
+  std::ofstream(dir / "a_file") << "x\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"/proc/x", "/proc/x"},
+      {(dir / "a_file").string(), "a_file"},
+      {(dir / "a_file" / "sub").string(), "a_file"},
+      {"''", "--out"}};
+  for (const auto& [out, named] : cases) {
+    for (const std::string& command :
+         {"mc --config " + kShort + " --runs 2 --no-figures",
+          std::string("gridsim --particles 5 --max-steps 300")}) {
+      const auto r = RunCli(command + " --out " + out);
+      EXPECT_EQ(r.exit_code, 2) << command << " --out " << out << "\n" << r.output;
+      EXPECT_NE(r.output.find(named), std::string::npos) << out << "\n" << r.output;
+      EXPECT_EQ(r.output.find("runs:"), std::string::npos) << out << ": ran\n" << r.output;
+      EXPECT_EQ(r.output.find("scans:"), std::string::npos) << out << ": ran\n" << r.output;
+    }
+  }
+  EXPECT_EQ(ReadText(dir / "a_file"), "x\n");
+}
+
+// Issue 8 item 16: a range check says its range in words, not as 309 digits.
+TEST(Cli, RangeErrorsSayTheRangeInWords) {
+  const fs::path dir = FreshDir("range_words");
+  const std::string out = " --out " + (dir / "out").string();
+  const std::pair<std::string, std::string> cases[] = {
+      {"gridsim --resolution 0", "must be > 0"},
+      {"gridsim --usable-range -1", "must be > 0"},
+      {"gridsim --srr -0.1", "must be >= 0"},
+      {"gridsim --max-steps -3", "must be >= 0"},
+      {"gridsim --odom-sigma-v nan", "must be >= 0"},
+      {"grid --log " + kShort + " --max-range 0", "must be > 0"},
+      {"run --isam " + kShort + " --gate-chi2 0", "must be > 0"}};
+  for (const auto& [args, words] : cases) {
+    const auto r = RunCli(args + out);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(words), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("1797693"), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
+// Issue 8 item 17: progress lines show the elapsed time, and no rate before time has passed to
+// measure one (the first line said "1250000000 scans/s").
+TEST(Cli, FirstProgressLineHasElapsedTimeAndNoRate) {
+  const fs::path dir = FreshDir("progress_rate");
+  const auto r = RunCli("gridsim --particles 5 --max-steps 300 --out " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::size_t at = r.output.find("scans: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string first = r.output.substr(at, r.output.find('\n', at) - at);
+  EXPECT_NE(first.find("elapsed"), std::string::npos) << first;
+  EXPECT_EQ(first.find("/s"), std::string::npos) << first;
+}
+
+// Issue 8 item 18: --threads 0 means the CPUs of the process's affinity mask (TBB warned about
+// 0 workers when it was hardware_concurrency under `taskset -c 0`).
+TEST(Cli, ThreadsZeroFollowsTheAffinityMask) {
+  const fs::path dir = FreshDir("threads_mask");
+  const auto r = testing::RunShell("mc --config " + kShort + " --runs 40 --threads 0 --no-figures --out " +
+                                       (dir / "out").string() + " 2>&1",
+                                   "taskset -c 0 ");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("TBB"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("arning"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace slamkit
