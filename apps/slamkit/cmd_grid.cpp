@@ -40,7 +40,7 @@ int RunGridCommand(const GridOptions& o) {
   if (log.skipped_lines > 0) PrintStderr("{}: skipped {} bad lines\n", o.log, log.skipped_lines);
   std::vector<PoseRelation> relations;
   if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
-  PrepareOutputDir(o.out);
+  OutputDir output(o.out);
 
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
   const GridRunResult result =
@@ -53,7 +53,7 @@ int RunGridCommand(const GridOptions& o) {
     reference = CompareWithReference(result.trajectory, LoggedTrajectory(log));
   }
 
-  const std::filesystem::path dir(o.out);
+  const std::filesystem::path& dir = output.staging();
   WriteGridOutputs(dir, result);
   WriteJson(dir / "metrics.json",
             GridMetrics(result, o.params, errors ? &*errors : nullptr,
@@ -66,8 +66,9 @@ int RunGridCommand(const GridOptions& o) {
     fmt::print("  {:<28}{:>12}\n", "relations: rotation [deg]",
                fmt::format("{:.3f} ± {:.3f}", errors->rot_mean_deg, errors->rot_std_deg));
   }
+  output.Commit();
   if (reference) PrintComparison("log poses", *reference);
-  fmt::print("wrote {}\n", dir.string());
+  fmt::print("wrote {}\n", o.out);
   return 0;
 }
 

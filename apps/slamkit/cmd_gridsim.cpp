@@ -76,7 +76,7 @@ void PrintSummary(const GridSimOptions& o, const GridSimResult& r) {
 
 int RunGridSimCommand(GridSimOptions o) {
   auto [plan, route] = PlanAndRoute(o);
-  PrepareOutputDir(o.out);
+  OutputDir output(o.out);
   o.sim.route = std::move(route);
   if (o.max_steps > 0) o.sim.max_steps = o.max_steps;
   o.sim.controller.max_turn_rate_radps =
@@ -95,13 +95,14 @@ int RunGridSimCommand(GridSimOptions o) {
                o.sim.max_steps);
   }
 
-  const std::filesystem::path dir(o.out);
+  const std::filesystem::path& dir = output.staging();
   WriteGridOutputs(dir, result.slam);
   WriteTumTrajectory(dir / "truth.tum", result.truth);
   WriteJson(dir / "metrics.json",
             GridSimMetrics(result, o.sim, o.sim_seed, o.params, PeakRssMib()));
+  output.Commit();
   PrintSummary(o, result);
-  fmt::print("wrote {}\n", dir.string());
+  fmt::print("wrote {}\n", o.out);
   return 0;
 }
 

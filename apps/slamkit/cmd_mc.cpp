@@ -78,7 +78,7 @@ int RunMonteCarloCommand(const McOptions& options) {
   if (options.unknown_association) {
     config.ekf.association_method = AssociationMethod::kNearestNeighbour;
   }
-  PrepareOutputDir(options.out);
+  OutputDir output(options.out);
   MonteCarloParams params;
   params.runs = options.runs;
   params.seed = options.seed;
@@ -90,13 +90,13 @@ int RunMonteCarloCommand(const McOptions& options) {
     progress->Update(done);
   };
   const MonteCarloResult mc = RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
-  const std::filesystem::path dir(options.out);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path& dir = output.staging();
   // Figures first: metrics.json is written last, so its presence means the run completed.
   if (!options.no_figures) WriteFigures(dir, config.scenario, mc);
   WriteMonteCarloOutputs(dir, MonteCarloMetrics(config, params, mc), mc);
+  output.Commit();
   PrintSummary(config, mc);
-  fmt::print("wrote {}\n", dir.string());
+  fmt::print("wrote {}\n", options.out);
   return 0;
 }
 

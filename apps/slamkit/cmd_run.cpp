@@ -27,7 +27,7 @@ struct RunOptions {
 
 int RunIsamCommand(const RunOptions& o) {
   const IsamLog log = ReadIsamLog(o.isam);
-  PrepareOutputDir(o.out);
+  OutputDir output(o.out);
   IsamRunParams params;
   params.ekf.association_method =
       o.known_association ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
@@ -36,8 +36,7 @@ int RunIsamCommand(const RunOptions& o) {
   params.odometry_covariance_scale = o.odometry_covariance_scale;
   params.sighting_covariance_scale = o.sighting_covariance_scale;
   const IsamRunResult result = RunEkfSlamOnIsam(log, params);
-  const std::filesystem::path dir(o.out);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path& dir = output.staging();
   if (!o.no_figures) {
     PathFigureData figure;
     figure.title = fmt::format("{} ({} association)", std::filesystem::path(o.isam).filename().string(),
@@ -47,13 +46,14 @@ int RunIsamCommand(const RunOptions& o) {
     WritePathFigure(dir / "map.png", figure);
   }
   WriteIsamOutputs(dir, IsamMetrics(result, params), result);  // metrics.json last
+  output.Commit();
   fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
              result.sightings, o.known_association ? "known" : "nearest-neighbour");
   fmt::print("  {:<28}{:>12}\n", "landmarks mapped", result.map.landmarks.size());
   fmt::print("  {:<28}{:>12}\n", "sightings dropped", result.dropped);
   fmt::print("  {:<28}{:>12.4f}\n", "association agreement", result.association_agreement);
   fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
-  fmt::print("wrote {}\n", dir.string());
+  fmt::print("wrote {}\n", o.out);
   return 0;
 }
 

@@ -1,5 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -250,6 +256,63 @@ TEST(Cli, ThreadsZeroFollowsTheAffinityMask) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find("TBB"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("arning"), std::string::npos) << r.output;
+}
+
+// Issue 8 items 14 and 13: a run replaces its --out as a whole (written beside it, then renamed):
+// a smaller run leaves none of a larger one's files, a directory of other files is refused, and
+// a run interrupted by SIGINT leaves the old output as it was.
+TEST(Cli, OutputReplacesTheOldOneAsAWhole) {
+  const fs::path dir = FreshDir("out_whole");
+  const fs::path out = dir / "out";
+  const std::string mc = "mc --config " + kShort + " --no-figures --threads 1 --out " + out.string();
+  ASSERT_EQ(RunCli(mc + " --runs 4").exit_code, 0);
+  ASSERT_TRUE(fs::exists(out / "run_3"));
+  const std::string old_metrics = ReadText(out / "metrics.json");
+
+  // SIGINT in the middle of a long run: the old output stays, whole.
+  const std::string cli = testing::CliPath();
+  const std::string config = kShort, out_arg = out.string();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::signal(SIGINT, SIG_DFL);
+    const int null_fd = open("/dev/null", O_WRONLY);
+    dup2(null_fd, 1);
+    dup2(null_fd, 2);
+    execl(cli.c_str(), cli.c_str(), "mc", "--config", config.c_str(), "--no-figures", "--threads",
+          "1", "--runs", "100000", "--seed", "9", "--out", out_arg.c_str(), nullptr);
+    _exit(127);
+  }
+  sleep(1);
+  kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT) << status;
+  EXPECT_EQ(ReadText(out / "metrics.json"), old_metrics);
+  EXPECT_TRUE(fs::exists(out / "run_3"));
+
+  const auto r = RunCli(mc + " --runs 2");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "run_1"));
+  EXPECT_FALSE(fs::exists(out / "run_2"));
+  EXPECT_FALSE(fs::exists(out / "run_3"));
+  EXPECT_EQ(nlohmann::json::parse(ReadText(out / "metrics.json"))["runs"], 2);
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    // Only the interrupted run's hidden folder may be left beside it.
+    if (name != "out") {
+      EXPECT_EQ(name.rfind(".out.partial-", 0), 0u) << name;
+    }
+  }
+
+  // A directory with other files is not replaced.
+  fs::create_directories(dir / "mine");
+  std::ofstream(dir / "mine" / "notes.txt") << "keep\n";
+  const auto refused = RunCli("mc --config " + kShort + " --runs 2 --no-figures --out " +
+                              (dir / "mine").string());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("mine"), std::string::npos) << refused.output;
+  EXPECT_EQ(ReadText(dir / "mine" / "notes.txt"), "keep\n");
 }
 
 }  // namespace
