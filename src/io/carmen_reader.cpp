@@ -53,6 +53,7 @@ class CarmenParser {
   }
 
   CarmenLog Finish();
+  bool has_scans() const { return !log_.scans.empty(); }
 
  private:
   void SetMaxRanges();
@@ -137,6 +138,11 @@ CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptio
   std::vector<std::string_view> tokens;
   std::string_view line;
   while (reader.Next(&line)) {
+    if (reader.line_number() == 1 && line.starts_with("#ROSBAG")) {
+      throw InputError(path.string() +
+                       ":1: a ROS bag (#ROSBAG header), expected a CARMEN log (FLASER, "
+                       "ROBOTLASER1, ODOM, PARAM lines)");
+    }
     text::Tokenize(line, &tokens);
     if (tokens.empty() || tokens[0].starts_with('#')) continue;
     try {
@@ -145,6 +151,11 @@ CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptio
       if (!options.skip_bad_lines) throw;
       ++skipped;
     }
+  }
+  if (!parser.has_scans()) {
+    throw InputError(path.string() +
+                     ": no laser scans (expected a CARMEN log with FLASER or ROBOTLASER1 "
+                     "records)");
   }
   CarmenLog log = parser.Finish();
   log.skipped_lines = skipped;

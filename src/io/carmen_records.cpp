@@ -28,16 +28,36 @@ constexpr const char* kRobotLaserTail[] = {
     "logger_timestamp"};
 constexpr std::size_t kRobotLaserTailSize = std::size(kRobotLaserTail);
 
+// A number of magnitude at most kCarmenMaxMagnitude (metres or radians).
+double Bounded(const Fields& fields, std::size_t i, const text::FieldName& field) {
+  const double value = fields.Number(i, field);
+  if (std::abs(value) > kCarmenMaxMagnitude) {
+    fields.Fail(field, fmt::format("magnitude above {:g} ('{}')", kCarmenMaxMagnitude,
+                                   fields.Text(i)));
+  }
+  return value;
+}
+
 // Reads the pose stored as x, y, theta in fields first .. first + 2.
 Pose2 PoseAt(const Fields& fields, std::size_t first, const char* const* names) {
-  return Pose2(fields.Number(first, {names[0]}), fields.Number(first + 1, {names[1]}),
-               fields.Number(first + 2, {names[2]}));
+  return Pose2(Bounded(fields, first, {names[0]}), Bounded(fields, first + 1, {names[1]}),
+               Bounded(fields, first + 2, {names[2]}));
 }
 
 float Range(const Fields& fields, std::size_t i, int beam) {
   const double value = fields.Number(i, {"r", beam});
+  if (value < 0.0) fields.Fail({"r", beam}, fmt::format("negative range ('{}')", fields.Text(i)));
   if (std::abs(value) > FLT_MAX) fields.Fail({"r", beam}, "out of range");
   return static_cast<float>(value);
+}
+
+// A positive maximum range of at most kCarmenMaxMagnitude metres.
+double MaxRange(const Fields& fields, std::size_t i, const text::FieldName& field) {
+  const double value = Bounded(fields, i, field);
+  if (value <= 0.0) {
+    fields.Fail(field, fmt::format("max range must be positive ('{}')", fields.Text(i)));
+  }
+  return value;
 }
 
 }  // namespace
@@ -50,14 +70,19 @@ std::pair<std::string, std::string> ParseParam(const Fields& fields, FrontLaser*
   if (name == "laser_front_laser_fov") {
     // CARMEN documents degrees, but some logs (csail) give radians: no laser sees less than 2π°.
     const double fov = fields.Number(1, {"value"});
+    if (fov <= 0.0 || fov > 360.0) {
+      fields.Fail({"value"}, fmt::format("laser_front_laser_fov must be in (0, 360] degrees (or "
+                                         "(0, 2π] radians), got '{}'",
+                                         fields.Text(1)));
+    }
     laser->fov_rad = fov > 2.0 * M_PI ? DegToRad(fov) : fov;
   } else if (name == "laser_front_laser_max_range") {
-    laser->max_range_m = fields.Number(1, {"value"});
+    laser->max_range_m = MaxRange(fields, 1, {"value"});
     laser->max_range_from_laser_param = true;
   } else if (name == "robot_front_laser_max" && !laser->max_range_from_laser_param) {
-    laser->max_range_m = fields.Number(1, {"value"});
+    laser->max_range_m = MaxRange(fields, 1, {"value"});
   } else if (name == "robot_frontlaser_offset") {
-    laser->offset = Pose2(fields.Number(1, {"value"}), 0.0, 0.0);
+    laser->offset = Pose2(Bounded(fields, 1, {"value"}), 0.0, 0.0);
   }
   return param;
 }
@@ -72,6 +97,7 @@ StampedPose ParseOdom(const Fields& fields) {
 LaserScan ParseFlaser(const Fields& fields, const FrontLaser& laser) {
   if (fields.size() == 0) fields.Fail({"n"}, "missing");
   const int n = fields.Count(0, {"n"});
+  if (n == 0) fields.Fail({"n"}, "no readings (a scan needs at least one beam)");
   const std::size_t expected = static_cast<std::size_t>(n) + 10;
   if (fields.size() != expected) {
     fields.Fail({"n"}, fmt::format("{} readings need {} fields after FLASER, got {}", n, expected,
@@ -98,6 +124,7 @@ LaserScan ParseRobotLaser1(const Fields& fields) {
   const std::size_t head = std::size(kRobotLaserHead);
   if (fields.size() < head) fields.Fail({kRobotLaserHead[fields.size()]}, "missing");
   const int n = fields.Count(head - 1, {"num_readings"});
+  if (n == 0) fields.Fail({"num_readings"}, "no readings (a scan needs at least one beam)");
   const std::size_t remissions = head + static_cast<std::size_t>(n);
   if (fields.size() <= remissions) fields.Fail({"num_remissions"}, "missing");
   const int m = fields.Count(remissions, {"num_remissions"});
@@ -111,7 +138,7 @@ LaserScan ParseRobotLaser1(const Fields& fields) {
   LaserScan scan;
   scan.angle_min_rad = fields.Number(1, {"start_angle"});
   scan.angle_increment_rad = fields.Number(3, {"angular_resolution"});
-  scan.max_range_m = fields.Number(4, {"max_range"});
+  scan.max_range_m = MaxRange(fields, 4, {"max_range"});
   scan.ranges_m.resize(n);
   for (int i = 0; i < n; ++i) scan.ranges_m[i] = Range(fields, head + i, i + 1);
   for (int i = 0; i < m; ++i) fields.Number(remissions + 1 + i, {"rem", i + 1});

@@ -16,6 +16,10 @@
 
 namespace slamkit::carmen {
 
+// Bound on pose, odometry, offset and max-range values (metres or radians): larger magnitudes
+// make no physical sense and would overflow downstream (see carmen_reader.hpp).
+inline constexpr double kCarmenMaxMagnitude = 1e6;
+
 // The front-laser settings that a FLASER record leaves implicit, from the PARAM records so far.
 struct FrontLaser {
   double fov_rad = M_PI;

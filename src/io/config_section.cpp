@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
 #include <charconv>
@@ -33,6 +34,11 @@ std::optional<T> ParseInteger(const YAML::Node& node) {
   return value;
 }
 
+// ":line" for a known mark, "" for yaml-cpp's null mark.
+std::string LineOf(const YAML::Mark& mark) {
+  return mark.is_null() ? std::string() : fmt::format(":{}", mark.line + 1);
+}
+
 }  // namespace
 
 YAML::Node LoadYamlFile(const std::filesystem::path& path) {
@@ -40,9 +46,16 @@ YAML::Node LoadYamlFile(const std::filesystem::path& path) {
     return YAML::LoadFile(path.string());
   } catch (const YAML::BadFile&) {
     throw InputError(path.string() + ": cannot open file");
+  } catch (const YAML::DeepRecursion& e) {
+    // Thrown for nesting of about 1000 levels, with msg "bad file", which misleads.
+    throw InputError(
+        fmt::format("{}{}: YAML nesting deeper than yaml-cpp supports (recursion depth {})",
+                    path.string(), LineOf(e.mark), e.depth()));
   } catch (const YAML::ParserException& e) {
     throw InputError(
-        fmt::format("{}:{}: YAML syntax error: {}", path.string(), e.mark.line + 1, e.msg));
+        fmt::format("{}{}: YAML syntax error: {}", path.string(), LineOf(e.mark), e.msg));
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}{}: YAML error: {}", path.string(), LineOf(e.mark), e.msg));
   }
 }
 

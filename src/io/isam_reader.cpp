@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "slamkit/io/error.hpp"
@@ -19,6 +20,17 @@ namespace {
 constexpr const char* kOdometryFields[] = {
     "i", "j", "dx", "dy", "dtheta", "c_xx", "c_xy", "c_xtheta", "c_yy", "c_ytheta", "c_thetatheta"};
 constexpr const char* kLandmarkFields[] = {"i", "l", "x", "y", "c_xx", "c_xy", "c_yy"};
+
+// A token as quoted in a message: at most 32 characters, non-printable bytes as \xNN.
+std::string Printable(std::string_view text) {
+  std::string out;
+  for (const char c : text.substr(0, 32)) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  if (text.size() > 32) out += "...";
+  return out;
+}
 
 // One whitespace-separated record; `where` (`file:line`) prefixes every error.
 class Record {
@@ -64,13 +76,25 @@ class Record {
     return value;
   }
 
+  // A number within [-bound, bound]; `unit` names the bound's unit in the message.
+  double Bounded(int field, double bound, const char* unit) const {
+    const double value = Number(field);
+    if (std::abs(value) > bound) {
+      Fail(fmt::format("field '{}': magnitude above {:g} {} ('{}')", names_[field], bound, unit,
+                       tokens_[field + 1]));
+    }
+    return value;
+  }
+
   // A symmetric covariance from its upper triangle, stored row by row from field `first`.
   template <int D>
   Eigen::Matrix<double, D, D> Covariance(int first, const char* what) const {
     Eigen::Matrix<double, D, D> c;
     int field = first;
     for (int r = 0; r < D; ++r) {
-      for (int k = r; k < D; ++k) c(r, k) = c(k, r) = Number(field++);
+      for (int k = r; k < D; ++k) {
+        c(r, k) = c(k, r) = Bounded(field++, kIsamMaxVariance, "(variance)");
+      }
     }
     if (Eigen::LLT<Eigen::Matrix<double, D, D>>(c).info() != Eigen::Success) {
       Fail(fmt::format("{} covariance is not positive definite", what));
@@ -101,9 +125,11 @@ class IsamParser {
     } else if (record.Kind() == "LANDMARK") {
       Landmark(record);
     } else {
-      record.Fail(fmt::format("unknown record '{}'", record.Kind()));
+      record.Fail(fmt::format("unknown record '{}' (expected ODOMETRY or LANDMARK, an iSAM log)",
+                              Printable(record.Kind())));
     }
   }
+  bool empty() const { return !latest_; }
   IsamLog Take() { return std::move(log_); }
 
  private:
@@ -122,7 +148,9 @@ class IsamParser {
     CheckFrom(record, record.Int(0), "ODOMETRY");
     IsamStep step;
     step.pose_index = record.Int(1);
-    step.odometry = {record.Number(2), record.Number(3), record.Number(4)};
+    step.odometry = {record.Bounded(2, kIsamMaxMagnitude, "m"),
+                     record.Bounded(3, kIsamMaxMagnitude, "m"),
+                     record.Bounded(4, kIsamMaxMagnitude, "rad")};
     step.odometry_covariance = record.Covariance<3>(5, "odometry");
     latest_ = step.pose_index;
     log_.steps.push_back(std::move(step));
@@ -133,7 +161,8 @@ class IsamParser {
     CheckFrom(record, record.Int(0), "LANDMARK");
     PointObservation obs;
     obs.id = record.Int(1);
-    obs.z = {record.Number(2), record.Number(3)};
+    if (obs.id < 0) record.Fail(fmt::format("field 'l': negative landmark id ({})", obs.id));
+    obs.z = {record.Bounded(2, kIsamMaxMagnitude, "m"), record.Bounded(3, kIsamMaxMagnitude, "m")};
     obs.R = record.Covariance<2>(4, "landmark");
     auto& sightings = log_.steps.empty() ? log_.initial_sightings : log_.steps.back().sightings;
     sightings.push_back(obs);
@@ -151,12 +180,21 @@ IsamLog ReadIsamLog(const std::filesystem::path& path) {
   IsamParser parser;
   std::string line;
   for (int line_number = 1; std::getline(in, line); ++line_number) {
+    if (line_number == 1 && line.starts_with("#ROSBAG")) {
+      throw InputError(path.string() +
+                       ":1: a ROS bag (#ROSBAG header), expected an iSAM log (ODOMETRY and "
+                       "LANDMARK lines)");
+    }
     std::vector<std::string> tokens = Tokens(line);
     if (tokens.empty() || tokens[0].starts_with('#')) continue;
     Record record(fmt::format("{}:{}", path.string(), line_number), std::move(tokens));
     parser.Parse(record);
   }
   if (in.bad()) throw InputError(path.string() + ": read error");
+  if (parser.empty()) {
+    throw InputError(path.string() +
+                     ": no records (expected an iSAM log: ODOMETRY and LANDMARK lines)");
+  }
   return parser.Take();
 }
 

@@ -105,6 +105,9 @@ LandmarkWorld ReadLandmarkCsv(const std::filesystem::path& path) {
     world.landmarks.push_back(landmark);
   }
   if (in.bad()) throw InputError(path.string() + ": read error");
+  if (world.landmarks.empty()) {
+    throw InputError(path.string() + ": no landmarks (expected `id,x_m,y_m` lines)");
+  }
   return world;
 }
 

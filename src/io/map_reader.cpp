@@ -12,8 +12,10 @@
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
+#include <ios>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -126,10 +128,18 @@ class PgmParser {
   std::size_t pos_ = 0;
 };
 
-PgmImage ReadPgm(const std::filesystem::path& path) {
+// `yaml` is the map file naming the image, for the messages.
+PgmImage ReadPgm(const std::filesystem::path& path, const std::string& yaml) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string() + ": cannot open file");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in) {
+    throw InputError(fmt::format("{}: cannot open file (the image of {})", path.string(), yaml));
+  }
+  std::string bytes;
+  try {
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  } catch (const std::ios_base::failure&) {  // e.g. EISDIR, EIO
+    throw InputError(fmt::format("{}: read error (the image of {})", path.string(), yaml));
+  }
   if (in.bad()) throw InputError(path.string() + ": read error");
   return PgmParser(path.string(), std::move(bytes)).Parse();
 }
@@ -179,12 +189,18 @@ OccupancyImage ReadOccupancyImage(const std::filesystem::path& yaml_path) {
   std::string image_name;
   s.Read("image", &image_name);
   if (image_name.empty()) s.Fail("image", "must name the PGM file");
+  if (image_name.find('\0') != std::string::npos) s.Fail("image", "contains a NUL byte");
   s.Read("resolution", &image.resolution_m, Bound::kPositive);
   image.origin_m = ReadOrigin(s);
   const bool negate = ReadNegate(s);
   // Relative image paths are relative to the YAML's folder (map_server's rule); `/` keeps an
   // absolute one as it is.
-  PgmImage pgm = ReadPgm(yaml_path.parent_path() / image_name);
+  const std::filesystem::path pgm_path = yaml_path.parent_path() / image_name;
+  std::error_code ec;
+  if (std::filesystem::is_directory(pgm_path, ec)) {
+    s.Fail("image", fmt::format("'{}' is a directory, not a PGM file", pgm_path.string()));
+  }
+  PgmImage pgm = ReadPgm(pgm_path, yaml_path.string());
   image.width = pgm.width;
   image.height = pgm.height;
   image.pixels = std::move(pgm.pixels);

@@ -44,6 +44,10 @@ std::vector<PoseRelation> ReadRelations(const std::filesystem::path& path) {
                                 tokens);
     relations.push_back(ParseRelation(fields));
   }
+  if (relations.empty()) {
+    throw InputError(path.string() +
+                     ": no relations (expected `t1 t2 x y z roll pitch yaw` lines)");
+  }
   return relations;
 }
 

@@ -305,6 +305,63 @@ TEST_F(CarmenReader, RejectsMalformedLinesWithTheirNumber) {
             1u);
 }
 
+// Issue 8 item 9: values that make no physical sense are input errors naming line and field.
+TEST_F(CarmenReader, RejectsValuesThatMakeNoPhysicalSense) {
+  const std::string ok = Odom(0, 0, 0, 10) + Flaser(10);
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "FLASER 3 1 -2 3 0 0 0 0 0 0 11 host 0\n"),
+                       "log.clf:3: FLASER field 'r2': negative range ('-2')"));
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "FLASER 0 0 0 0 0 0 0 11 host 0\n"),
+                       "log.clf:3: FLASER field 'n': no readings"));
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "ROBOTLASER1 0 -1.5 3 0.01 30 0.01 0 0 0 "
+                                       "0 0 0 0 0 0 0 0 0 0 0 11 host 0\n"),
+                       "log.clf:3: ROBOTLASER1 field 'num_readings': no readings"));
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "ROBOTLASER1 0 -1.5 3 0.01 -5 0.01 0 1 1 0 "
+                                       "0 0 0 0 0 0 0 0 0 0 0 11 host 0\n"),
+                       "log.clf:3: ROBOTLASER1 field 'max_range': max range must be positive"));
+  for (const char* fov : {"-180", "0", "1e300", "361"}) {
+    EXPECT_TRUE(Contains(ErrorOfLog(std::string("PARAM laser_front_laser_fov ") + fov +
+                                    " host 0\n" + ok),
+                         "log.clf:1: PARAM field 'value': laser_front_laser_fov must be in (0, "
+                         "360]"))
+        << fov;
+  }
+  for (const char* name : {"laser_front_laser_max_range", "robot_front_laser_max"}) {
+    for (const char* range : {"-5", "0"}) {
+      EXPECT_TRUE(Contains(ErrorOfLog(std::string("PARAM ") + name + " " + range + " host 0\n" +
+                                      ok),
+                           "log.clf:1: PARAM field 'value': max range must be positive"))
+          << name << " " << range;
+    }
+  }
+  EXPECT_TRUE(Contains(ErrorOfLog("PARAM robot_frontlaser_offset 1e300 host 0\n" + ok),
+                       "log.clf:1: PARAM field 'value': magnitude above 1e+06"));
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "FLASER 3 1 2 3 1e308 0 0 0 0 0 11 host 0\n"),
+                       "log.clf:3: FLASER field 'x': magnitude above 1e+06 ('1e308')"));
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "FLASER 3 1 2 3 0 0 0 0 0 -1e308 11 host 0\n"),
+                       "log.clf:3: FLASER field 'odom_theta': magnitude above"));
+  EXPECT_TRUE(Contains(ErrorOfLog(ok + "ODOM 0 1e308 0 0 0 0 11 host 0\n"),
+                       "log.clf:3: ODOM field 'y': magnitude above"));
+  // The bounds themselves and a 2π radian field of view are fine.
+  EXPECT_EQ(ReadCarmenLog(Write("PARAM laser_front_laser_fov 6.283185307179586 host 0\n"
+                                "PARAM robot_front_laser_max 1e6 host 0\n"
+                                "FLASER 3 0 2 3 1e6 -1e6 0 0 0 0 11 host 0\n"))
+                .scans.size(),
+            1u);
+}
+
+// Issue 8 item 11: a log with nothing to process says what was expected.
+TEST_F(CarmenReader, RejectsLogsWithoutScans) {
+  for (const std::string& text : {std::string(""), std::string("# only a comment\n\n"),
+                                 Odom(0, 0, 0, 1) + Odom(1, 0, 0, 2),
+                                 std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10)}) {
+    EXPECT_TRUE(Contains(ErrorOfLog(text),
+                         "log.clf: no laser scans (expected a CARMEN log with FLASER or "
+                         "ROBOTLASER1 records)"));
+  }
+  EXPECT_TRUE(Contains(ErrorOfLog("#ROSBAG V2.0\nE\0\0\0"),
+                       "log.clf:1: a ROS bag (#ROSBAG header), expected a CARMEN log"));
+}
+
 TEST_F(CarmenReader, SkipsAndCountsBadLines) {
   const std::string text = Odom(0, 0, 0, 1) + "FLASER 3 1 2 0 0 0 0 0 0 2 host 0\n" + Flaser(1) +
                            "FLASER 3 1 abc 3 0 0 0 0 0 0 2 host 0\n" + Odom(std::nan(""), 0, 0, 2) +

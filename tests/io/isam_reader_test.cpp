@@ -97,6 +97,40 @@ TEST_F(IsamReader, RejectsMalformedLinesWithTheirNumber) {
                        "log.txt:1: odometry covariance is not positive definite"));
 }
 
+// Issue 8 item 7: absurd magnitudes would run to a map full of NaN.
+TEST_F(IsamReader, RejectsValuesOfAbsurdMagnitude) {
+  const std::string ok = kOdometry01;
+  EXPECT_TRUE(Contains(ErrorOf(ok + "LANDMARK 1 7 1e308 1 1 0 1\n"),
+                       "log.txt:2: field 'x': magnitude above 1e+06 m"));
+  EXPECT_TRUE(Contains(ErrorOf(ok + "LANDMARK 1 7 1 -2e6 1 0 1\n"),
+                       "log.txt:2: field 'y': magnitude above"));
+  EXPECT_TRUE(Contains(ErrorOf("ODOMETRY 0 1 1e308 0 0 1 0 0 1 0 1\n"),
+                       "log.txt:1: field 'dx': magnitude above"));
+  EXPECT_TRUE(Contains(ErrorOf("ODOMETRY 0 1 0 0 1e308 1 0 0 1 0 1\n"),
+                       "log.txt:1: field 'dtheta': magnitude above"));
+  EXPECT_TRUE(Contains(ErrorOf("ODOMETRY 0 1 0 0 0 1e300 0 0 1 0 1\n"),
+                       "log.txt:1: field 'c_xx': magnitude above"));
+  EXPECT_TRUE(Contains(ErrorOf(ok + "LANDMARK 1 7 1 1 1 0 1e300\n"),
+                       "log.txt:2: field 'c_yy': magnitude above"));
+  ReadIsamLog(Write(ok + "LANDMARK 1 7 1e6 -1e6 1e12 0 1e12\n"));  // the bounds themselves
+}
+
+// Issue 8 item 8: the CSV reader rejects negative ids, so must this one.
+TEST_F(IsamReader, RejectsNegativeLandmarkIds) {
+  EXPECT_TRUE(Contains(ErrorOf(std::string(kOdometry01) + "LANDMARK 1 -1 1 1 1 0 1\n"),
+                       "log.txt:2: field 'l': negative landmark id (-1)"));
+}
+
+// Issue 8 item 11: nothing to process, or not an iSAM log at all.
+TEST_F(IsamReader, RejectsInputWithNothingToProcess) {
+  EXPECT_TRUE(Contains(ErrorOf(""), "log.txt: no records (expected an iSAM log"));
+  EXPECT_TRUE(Contains(ErrorOf("# only\n\n  \n"), "log.txt: no records (expected an iSAM log"));
+  EXPECT_TRUE(Contains(ErrorOf("#ROSBAG V2.0\nE\x01\x02\n"),
+                       "log.txt:1: a ROS bag (#ROSBAG header), expected an iSAM log"));
+  EXPECT_TRUE(Contains(ErrorOf(std::string("\x89PNG\r\n\x1a\n\0\0", 10)),
+                       "log.txt:1: unknown record '\\x89PNG' (expected ODOMETRY or LANDMARK"));
+}
+
 TEST_F(IsamReader, MissingFileNamesIt) {
   try {
     ReadIsamLog(dir_ / "absent.txt");

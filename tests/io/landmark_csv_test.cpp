@@ -67,6 +67,14 @@ TEST_F(LandmarkCsv, DuplicateIdNamesBothLines) {
   EXPECT_TRUE(Contains(message, "line 2"));
 }
 
+// Issue 8 item 11: nothing to process is an input error saying what was expected.
+TEST_F(LandmarkCsv, EmptyInputIsAnError) {
+  for (const char* text : {"", "# only a comment\n\n", "id,x_m,y_m\n"}) {
+    EXPECT_TRUE(Contains(ErrorOf(text), "landmarks.csv: no landmarks (expected `id,x_m,y_m`"))
+        << text;
+  }
+}
+
 TEST_F(LandmarkCsv, MissingFileNamesIt) {
   const fs::path path = dir_ / "absent.csv";
   try {

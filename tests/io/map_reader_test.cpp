@@ -123,6 +123,41 @@ TEST_F(MapReader, BadHeaderFieldsAreNamed) {
   }
 }
 
+// Issue 8 item 3: an image that is a directory or has a NUL byte let std::ios_base::failure
+// escape (exit 1, no file name).
+TEST_F(MapReader, ImageThatIsADirectoryOrHasANulByteNamesTheYaml) {
+  WriteFile("map.pgm", Pgm());
+  std::filesystem::create_directory(dir_ / "sub");
+  const std::pair<std::string, std::string> cases[] = {
+      {"image: .\n", "map.yaml:1: key 'image': '"},
+      {"image: sub\n", "map.yaml:1: key 'image': '"},
+      {"image: \"map\\0.pgm\"\n", "map.yaml:1: key 'image': contains a NUL byte"},
+  };
+  for (const auto& [image, part] : cases) {
+    const auto yaml = WriteFile("map.yaml", image + "resolution: 0.1\norigin: [0, 0, 0]\n");
+    const std::string message = InputErrorOf([&] { ReadOccupancyImage(yaml); });
+    EXPECT_TRUE(Contains(message, part)) << image << message;
+  }
+  const auto yaml = WriteFile("map.yaml", "image: sub\nresolution: 0.1\norigin: [0, 0, 0]\n");
+  EXPECT_TRUE(Contains(InputErrorOf([&] { ReadOccupancyImage(yaml); }), "is a directory"));
+}
+
+// Issue 8 item 19: yaml-cpp's nesting limit was reported as "YAML syntax error: bad file".
+TEST_F(MapReader, DeeplyNestedYamlNamesTheFileAndLine) {
+  std::string block;  // one "- " per line, each indented further; the limit is hit on line 502
+  for (int i = 0; i < 1000; ++i) block += std::string(2 * i + 2, ' ') + "- \n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"origin: " + std::string(1000, '[') + std::string(1000, ']') + "\n", ":3: "},
+      {"origin:\n" + block, ":502: "},
+  };
+  for (const auto& [origin, line] : cases) {
+    const auto yaml = WriteFile("deep.yaml", "image: map.pgm\nresolution: 0.1\n" + origin);
+    const std::string message = InputErrorOf([&] { ReadOccupancyImage(yaml); });
+    EXPECT_TRUE(Contains(message, yaml.string() + line + "YAML nesting deeper than")) << message;
+    EXPECT_FALSE(Contains(message, "bad file")) << message;
+  }
+}
+
 TEST_F(MapReader, MissingResolutionNamesTheYamlAndKey) {
   const auto yaml = WriteMap(Pgm(), "", "");
   const std::string message = InputErrorOf([&] { ReadOccupancyImage(yaml); });

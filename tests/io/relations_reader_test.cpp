@@ -66,6 +66,14 @@ TEST_F(RelationsReader, SkipsCommentsAndBlankLinesAndWrapsYaw) {
   EXPECT_NEAR(relations[1].delta.theta(), 4.0 - 2.0 * M_PI, 1e-12);
 }
 
+// Issue 8 item 11: nothing to process is an input error saying what was expected.
+TEST_F(RelationsReader, EmptyInputIsAnError) {
+  for (const char* text : {"", "# t1 t2 x y z roll pitch yaw\n\n"}) {
+    EXPECT_TRUE(Contains(ErrorOf(text), "log.relations: no relations (expected `t1 t2 x y z"))
+        << text;
+  }
+}
+
 TEST_F(RelationsReader, RejectsMalformedLinesWithTheirNumber) {
   const std::string ok = "# header\n1 2 0 0 0 0 0 0\n";
   EXPECT_TRUE(Contains(ErrorOf(ok + "1 2 0.5 abc 0 0 0 0\n"),

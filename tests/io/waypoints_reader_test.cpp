@@ -30,7 +30,9 @@ TEST_F(WaypointsReader, ErrorsNameTheFileLineAndField) {
       {"1 2\nnan 3\n", "route.txt:2: field 'x': not a finite number ('nan')"},
       {"1 2\n\n3 4 5\n", "route.txt:3: expected 2 fields"},
       {"1 2\n3\n", "route.txt:2: expected 2 fields"},
-      {"# only\n1 2\n", "at least 2 waypoints, got 1"}};
+      {"# only\n1 2\n", "at least 2 waypoints, got 1"},
+      {"", "route.txt: a route needs at least 2 waypoints, got 0"},
+      {"# only\n\n", "route.txt: a route needs at least 2 waypoints, got 0"}};
   for (const auto& [text, part] : cases) {
     const auto path = WriteFile("route.txt", text);
     const std::string message = InputErrorOf([&] { ReadWaypoints(path); });

@@ -46,7 +46,12 @@ struct CarmenLog {
 // ignored); gzip-compressed files (by content, not name) are read transparently. Throws
 // InputError naming the file, line and field for a wrong beam count, a non-number, NaN/inf, or
 // time going backwards, unless options.skip_bad_lines (then the line is skipped and counted).
-// A missing, unreadable or truncated gzip file is an InputError naming the file.
+// A missing, unreadable or truncated gzip file is an InputError naming the file, and so is a
+// log without any FLASER or ROBOTLASER1 scan (empty, comments only, ODOM only, another format
+// such as a ROS bag). Values checked for physical sense (InputError naming the field): ranges
+// are non-negative; a scan has at least one beam; the field of view is in (0, 360] degrees;
+// max ranges are positive; pose, odometry, offset and max-range values have magnitude at most
+// 1e6 (metres or radians).
 //
 // Scan geometry. FLASER: the field of view is PARAM laser_front_laser_fov (degrees as CARMEN
 // documents, or radians when at most 2π, as in csail-corrected.log.gz), else π, centred on the

@@ -29,7 +29,13 @@ struct IsamLog {
 // lines (the Victoria Park file of ../shared/datasets). Odometry must chain (i = previous j);
 // a landmark line refers to the latest pose. Throws InputError naming the file, line and field
 // for an unknown record, a missing or non-numeric field, NaN/inf, a broken chain, or a covariance
-// that is not positive definite.
+// that is not positive definite. Bounds on what makes physical sense: every dx, dy, dθ, x, y has
+// magnitude at most kIsamMaxMagnitude (metres or radians), every covariance entry at most
+// kIsamMaxVariance (m², rad²); landmark ids are non-negative. A file without any record (empty,
+// comments only) is an InputError, as is one in another format (unknown record, ROS bag).
+inline constexpr double kIsamMaxMagnitude = 1e6;
+inline constexpr double kIsamMaxVariance = 1e12;
+
 IsamLog ReadIsamLog(const std::filesystem::path& path);
 
 }  // namespace slamkit
