@@ -84,6 +84,10 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_option("--relations", o->relations, "relations file (Kümmerle et al. 2009)")
       ->check(CLI::ExistingFile);
   AddGridFilterOptions(cmd, o->params);
+  cmd->add_option("--max-map-extent", o->params.grid.max_extent_m,
+                  "largest |x| or |y| the map may reach [m]")->check(CLI::PositiveNumber);
+  cmd->add_option("--max-map-cells", o->params.grid.max_cells,
+                  "largest map area in cells (1 byte each)")->check(CLI::PositiveNumber);
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
   cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
       ->check(NonNegativeNumber());

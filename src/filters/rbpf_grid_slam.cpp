@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <utility>
 
 namespace slamkit {
@@ -172,7 +173,10 @@ void RbpfGridSlam::SetSecondLayer(int i, std::shared_ptr<const OccupancyGrid> la
 
 int RbpfGridSlam::BestParticle() const { return particles_.Best(); }
 
-const OccupancyGrid& RbpfGridSlam::BestMap() const { return particles_[BestParticle()].map; }
+const OccupancyGrid& RbpfGridSlam::BestMap() const {
+  if (particles_.empty()) throw std::logic_error("RbpfGridSlam::BestMap: no scan processed yet");
+  return particles_[BestParticle()].map;
+}
 
 Pose2 RbpfGridSlam::CurrentPose() {
   FinishTracking();

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "slamkit/maps/occupancy_grid.hpp"
@@ -69,6 +71,13 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
   const long miss = OccupancyGrid::ToSteps(grid.params().log_odds_miss);
   const long hit = OccupancyGrid::ToSteps(grid.params().log_odds_hit);
   const int n = static_cast<int>(scan.ranges_m.size());
+  // The end cells first: every one is checked against the grid's extent, and the scan's
+  // bounding box against max_cells, before a single cell is written (a fine resolution would
+  // otherwise allocate tile after tile along every beam before the table's limit is reached).
+  std::vector<CellIndex> ends(static_cast<std::size_t>(n));
+  std::vector<bool> traced(static_cast<std::size_t>(n), false);
+  CellIndex lo = origin;
+  CellIndex hi = origin;
   for (int i = 0; i < n; ++i) {
     const double range = scan.ranges_m[i];
     if (!std::isfinite(range) || range <= 0.0) continue;
@@ -76,7 +85,25 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
     const double angle = laser_pose.theta() + scan.BeamAngle(i);
     const Eigen::Vector2d end =
         laser_pose.translation() + length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    const CellIndex end_cell = grid.WorldToCell(end);
+    const CellIndex c = grid.WorldToCell(end);
+    ends[i] = c;
+    traced[i] = true;
+    lo = {std::min(lo.x, c.x), std::min(lo.y, c.y)};
+    hi = {std::max(hi.x, c.x), std::max(hi.y, c.y)};
+  }
+  const double box_cells = (double(hi.x) - lo.x + 1.0) * (double(hi.y) - lo.y + 1.0);
+  if (box_cells > double(grid.params().max_cells)) {
+    std::ostringstream msg;
+    msg << "InsertScan: one scan covers " << (hi.x - lo.x + 1) << " x " << (hi.y - lo.y + 1)
+        << " cells at resolution " << grid.resolution() << " m (" << box_cells
+        << " cells), more than the limit max_cells = " << grid.params().max_cells
+        << "; raise OccupancyGridParams::max_cells (grid --max-map-cells) or the resolution";
+    throw std::length_error(msg.str());
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!traced[i]) continue;
+    const double range = scan.ranges_m[i];
+    const CellIndex end_cell = ends[i];
     ForEachRayCell(origin, end_cell, /*include_end=*/false,
                    [&grid, miss](const CellIndex& c) { grid.UpdateSteps(c, miss); });
     if (scan.IsReturn(i) && range <= params.usable_range_m) grid.UpdateSteps(end_cell, hit);

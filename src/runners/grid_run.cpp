@@ -3,24 +3,41 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <stdexcept>
+#include <string>
+
+#include "slamkit/io/error.hpp"
 
 namespace slamkit {
 
 GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
                           const std::function<void(int, int)>& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  RbpfGridSlam slam(params);
-  const int total = static_cast<int>(log.scans.size());
-  for (int i = 0; i < total; ++i) {
-    slam.ProcessScan(log.scans[i]);
-    if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
+  if (log.scans.empty()) {
+    throw InputError("grid: the log has no laser scan (no FLASER/ROBOTLASER1/RAWLASER line)");
   }
+  const auto start = std::chrono::steady_clock::now();
   GridRunResult out;
-  out.trajectory = slam.BestTrajectory();
-  out.map = slam.BestMap();
+  try {
+    OccupancyGrid check(params.grid);  // a bad resolution or limit fails before the run
+    RbpfGridSlam slam(params);
+    const int total = static_cast<int>(log.scans.size());
+    for (int i = 0; i < total; ++i) {
+      slam.ProcessScan(log.scans[i]);
+      if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
+    }
+    out.trajectory = slam.BestTrajectory();
+    out.map = slam.BestMap();
+    out.updates = slam.updates();
+    out.resamples = slam.resamples();
+  } catch (const std::invalid_argument& e) {  // the grid's parameters or the log's values
+    throw InputError(std::string("grid: ") + e.what());
+  } catch (const std::out_of_range& e) {  // a pose, odometry or laser offset outside the map
+    throw InputError(std::string("grid: ") + e.what());
+  } catch (const std::length_error& e) {  // a map larger than OccupancyGridParams allows
+    throw InputError(std::string("grid: ") + e.what());
+  }
+  const int total = static_cast<int>(log.scans.size());
   out.scans = total;
-  out.updates = slam.updates();
-  out.resamples = slam.resamples();
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

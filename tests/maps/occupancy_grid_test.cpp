@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -271,3 +274,53 @@ TEST(InsertScan, InvalidRangesAreSkipped) {
 
 }  // namespace
 }  // namespace slamkit
+
+// Issue 8, items 4 and 5: coordinates and map sizes are checked before any int conversion or
+// allocation.
+TEST(OccupancyGridLimits, WorldToCellRejectsPointsOutsideTheExtent) {
+  const slamkit::OccupancyGrid grid;
+  EXPECT_THROW(grid.WorldToCell({1e308, 0.0}), std::out_of_range);
+  EXPECT_THROW(grid.WorldToCell({0.0, -1e300}), std::out_of_range);
+  EXPECT_THROW(grid.WorldToCell({std::nan(""), 0.0}), std::out_of_range);
+  EXPECT_THROW(grid.WorldToCell({1.0e5 + 1.0, 0.0}), std::out_of_range);
+  EXPECT_EQ(grid.WorldToCell({1.0e4, -1.0e4}), (slamkit::CellIndex{200000, -200000}));
+  try {
+    grid.WorldToCell({2.0e5, 0.0});
+    FAIL();
+  } catch (const std::out_of_range& e) {
+    EXPECT_NE(std::string(e.what()).find("max_extent_m"), std::string::npos) << e.what();
+  }
+}
+
+TEST(OccupancyGridLimits, FineResolutionShrinksTheExtent) {
+  const slamkit::OccupancyGrid grid({.resolution_m = 1e-9});
+  EXPECT_LT(grid.extent_m(), 1.0);
+  EXPECT_NO_THROW(grid.WorldToCell({0.5, 0.5}));
+  EXPECT_THROW(grid.WorldToCell({30.0, 0.0}), std::out_of_range);
+}
+
+TEST(OccupancyGridLimits, BadResolutionIsRejected) {
+  EXPECT_THROW(slamkit::OccupancyGrid({.resolution_m = 0.0}), std::invalid_argument);
+  EXPECT_THROW(slamkit::OccupancyGrid({.resolution_m = -1.0}), std::invalid_argument);
+  EXPECT_THROW(slamkit::OccupancyGrid({.resolution_m = std::nan("")}), std::invalid_argument);
+}
+
+TEST(OccupancyGridLimits, GrowingBeyondMaxCellsThrowsBeforeAllocating) {
+  slamkit::OccupancyGrid grid;  // 0.05 m, max_cells 2^30
+  grid.Update({0, 0}, 1.0f);
+  // A jump of 1e4 m on both axes: 200000² cells, far beyond 2^30.
+  const slamkit::CellIndex far = grid.WorldToCell({1.0e4, 1.0e4});
+  try {
+    grid.Update(far, 1.0f);
+    FAIL();
+  } catch (const std::length_error& e) {
+    EXPECT_NE(std::string(e.what()).find("max_cells"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(grid.TileCount(), 1u);  // unchanged
+  // The limit is a parameter: a small one stops a small map.
+  slamkit::OccupancyGrid small({.max_cells = 64 * 64 * 4});
+  small.Update({0, 0}, 1.0f);
+  EXPECT_THROW(small.Update({64 * 10, 0}, 1.0f), std::length_error);
+  // A map that fits grows with no error, even when the slack would not fit.
+  EXPECT_NO_THROW(small.Update({64, 0}, 1.0f));
+}

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "slamkit/io/error.hpp"
 #include "slamkit/runners/scenario_config.hpp"
 
 namespace slamkit {
@@ -97,6 +99,54 @@ TEST(MonteCarlo, SameSeedSameResultWhateverTheThreadCount) {
   }
   EXPECT_EQ(one.anees, two.anees);
   EXPECT_NE(one.anees, other.anees);
+}
+
+// Issue 8, item 6: without keep_runs the runs are aggregated as they finish and dropped, with the
+// same figures bit for bit; on_run sees every run once, in index order.
+TEST(MonteCarlo, StreamingRunsGivesTheSameFiguresWithoutKeepingRuns) {
+  MonteCarloParams params;
+  params.runs = 7;
+  params.seed = 5;
+  params.threads = 2;
+  const MonteCarloResult kept = RunMonteCarlo(ShortScenario(false), params);
+  params.keep_runs = false;
+  params.batch_runs = 3;  // batches of 3, 3 and 1
+  std::vector<int> seen;
+  std::vector<double> rmse_seen;
+  params.on_run = [&](int k, const RunResult& r) {
+    seen.push_back(k);
+    rmse_seen.push_back(r.rmse.position_m);
+  };
+  const MonteCarloResult streamed = RunMonteCarlo(ShortScenario(false), params);
+  EXPECT_TRUE(streamed.runs.empty());
+  EXPECT_EQ(seen, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+  ASSERT_EQ(kept.runs.size(), 7u);
+  ASSERT_EQ(streamed.summaries.size(), 7u);
+  for (int k = 0; k < 7; ++k) {
+    EXPECT_EQ(rmse_seen[k], kept.runs[k].rmse.position_m);
+    EXPECT_EQ(streamed.summaries[k].rmse.position_m, kept.runs[k].rmse.position_m);
+    EXPECT_EQ(streamed.summaries[k].landmarks_mapped, kept.runs[k].map.landmarks.size());
+  }
+  EXPECT_EQ(streamed.run_count, 7);
+  EXPECT_EQ(streamed.first_run.nees, kept.runs[0].nees);
+  EXPECT_EQ(streamed.t_s, kept.t_s);
+  EXPECT_EQ(streamed.anees, kept.anees);
+  EXPECT_EQ(streamed.position_rmse_m, kept.position_rmse_m);
+  EXPECT_EQ(streamed.heading_rmse_rad, kept.heading_rmse_rad);
+  EXPECT_EQ(streamed.anees_mean, kept.anees_mean);
+  EXPECT_EQ(streamed.rmse.position_m, kept.rmse.position_m);
+  EXPECT_EQ(streamed.map_rmse_mean_m, kept.map_rmse_mean_m);
+  EXPECT_EQ(streamed.landmarks_mapped_mean, kept.landmarks_mapped_mean);
+  EXPECT_EQ(streamed.association.correct, kept.association.correct);
+}
+
+TEST(MonteCarlo, AWorldBeyondTheLandmarkLimitIsAnInputError) {
+  ScenarioConfig c = ShortScenario(false);
+  c.scenario.world.kind = WorldSpec::Kind::kUniform;
+  c.scenario.world.uniform.count = 2000000000;
+  MonteCarloParams params;
+  params.runs = 1;
+  EXPECT_THROW(RunMonteCarlo(c, params), InputError);
 }
 
 }  // namespace

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 #include <cmath>
 #include <numbers>
 
@@ -116,3 +119,32 @@ TEST(World, GivenWorldIsCopied) {
 
 }  // namespace
 }  // namespace slamkit
+
+// Issue 8, item 5: a landmark count beyond WorldSpec::max_landmarks throws before allocating.
+TEST(WorldLimits, HugeCountsAndDensitiesAreRejected) {
+  slamkit::Rng rng(1);
+  slamkit::UniformWorldParams uniform;
+  uniform.count = 2000000000;
+  EXPECT_THROW(slamkit::GenerateUniformWorld(uniform, rng), std::length_error);
+  uniform.count = 0;
+  uniform.density_per_m2 = 1e6;
+  try {
+    slamkit::GenerateUniformWorld(uniform, rng);
+    FAIL();
+  } catch (const std::length_error& e) {
+    EXPECT_NE(std::string(e.what()).find("max_landmarks"), std::string::npos) << e.what();
+  }
+  uniform.density_per_m2 = 1e300;
+  EXPECT_THROW(slamkit::GenerateUniformWorld(uniform, rng), std::length_error);
+  slamkit::ClusterParams cluster;
+  cluster.density_per_m2 = 1e6;
+  EXPECT_THROW(slamkit::GenerateClusteredWorld({cluster}, rng), std::length_error);
+  slamkit::WorldSpec spec;
+  spec.uniform.count = 2000000000;
+  EXPECT_THROW(slamkit::MakeWorld(spec), std::length_error);
+  spec.uniform.count = 200;
+  spec.max_landmarks = 100;
+  EXPECT_THROW(slamkit::MakeWorld(spec), std::length_error);
+  spec.max_landmarks = 200;
+  EXPECT_EQ(slamkit::MakeWorld(spec).landmarks.size(), 200u);
+}

@@ -26,6 +26,14 @@ struct OccupancyGridParams {
   float log_odds_miss = -0.4f;   // ≈ ln(0.4 / 0.6)
   float log_odds_min = -4.0f;    // clamping keeps cells able to change their mind (|·| ≤ 7.9)
   float log_odds_max = 4.0f;
+  // Limits, checked before anything is allocated (a bad pose or resolution would otherwise
+  // allocate until the process dies). A point farther than max_extent_m from the origin on
+  // either axis cannot be mapped (WorldToCell throws std::out_of_range); the extent is also
+  // capped at kMaxCellCoordinate cells, so a fine resolution shrinks it. A write that would grow
+  // the tile table beyond max_cells cells (1 byte each once written) throws std::length_error.
+  // Raise them here (or with the command line's --max-map-extent / --max-map-cells).
+  double max_extent_m = 1.0e5;
+  std::uint64_t max_cells = std::uint64_t{1} << 30;
 };
 
 // An occupancy grid in log-odds (0 = unknown) that grows as it is written, stored in square
@@ -46,10 +54,22 @@ class OccupancyGrid {
 
   const OccupancyGridParams& params() const { return params_; }
   double resolution() const { return params_.resolution_m; }
-  // Inline: scan matching calls these hundreds of thousands of times per scan.
+  // The largest |cell coordinate| a grid uses: differences of two coordinates (ray lengths) and
+  // tile arithmetic then stay far from int overflow.
+  static constexpr int kMaxCellCoordinate = 1 << 29;
+  // The half-width in metres of the square the grid can map: min(max_extent_m,
+  // kMaxCellCoordinate × resolution).
+  double extent_m() const { return cell_limit_ * params_.resolution_m; }
+  // Inline: scan matching calls these hundreds of thousands of times per scan. Throws
+  // std::out_of_range for a point outside ±extent_m() (or not finite), before any conversion
+  // to int could overflow.
   CellIndex WorldToCell(const Eigen::Vector2d& p) const {
-    return {static_cast<int>(std::floor(p.x() * inverse_resolution_)),
-            static_cast<int>(std::floor(p.y() * inverse_resolution_))};
+    const double x = std::floor(p.x() * inverse_resolution_);
+    const double y = std::floor(p.y() * inverse_resolution_);
+    if (!(std::abs(x) <= cell_limit_ && std::abs(y) <= cell_limit_)) [[unlikely]] {
+      ThrowOutsideExtent(p);
+    }
+    return {static_cast<int>(x), static_cast<int>(y)};
   }
   Eigen::Vector2d CellCenter(const CellIndex& c) const {
     return {(c.x + 0.5) * params_.resolution_m, (c.y + 0.5) * params_.resolution_m};
@@ -96,10 +116,12 @@ class OccupancyGrid {
   static constexpr float kLogOddsStep = 1.0f / 32.0f;
   static constexpr long kMaxSteps = 127;
   std::shared_ptr<Tile>* FindTileSlot(int tx, int ty);
+  [[noreturn]] void ThrowOutsideExtent(const Eigen::Vector2d& p) const;
   Tile& MutableTile(int tx, int ty);
 
   OccupancyGridParams params_;
   double inverse_resolution_;
+  double cell_limit_;  // the largest |cell coordinate| WorldToCell returns
   long min_steps_;  // the clamping bounds in kLogOddsStep units
   long max_steps_;
   // Tiles in a row-major table over the tile range [tile_min_, tile_min_ + tile_extent_).

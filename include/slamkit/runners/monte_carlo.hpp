@@ -60,13 +60,35 @@ struct MonteCarloParams {
   bool known_association = false;
   // Called after each finished run with (finished, total), from worker threads one at a time.
   std::function<void(int, int)> progress;
+  // Keep every RunResult in MonteCarloResult::runs. Without it only run 0 (first_run) and the
+  // per-run summaries are kept: memory then grows by a RunSummary per run, not a whole run.
+  bool keep_runs = true;
+  // Called with (k, run k) for every run, in index order, from the calling thread, as soon as
+  // the batch holding run k has finished: per-run outputs can be written here, one run at a time.
+  std::function<void(int, const RunResult&)> on_run;
+  // Runs simulated in parallel before they are aggregated and dropped (memory holds one batch).
+  int batch_runs = 64;
+};
+
+// What the outputs keep of one run (metrics.json's per_run).
+struct RunSummary {
+  PoseRmse rmse;
+  double anees = 0.0;  // mean over steps of the pose NEES
+  std::size_t landmarks_mapped = 0;
+  double map_rmse_m = 0.0;
+  AssociationScore association;
+  double step_time_mean_s = 0.0;
+  double step_time_max_s = 0.0;
 };
 
 // Aggregates over runs. Per-step series are over the runs (all runs share the true trajectory:
 // noise enters through the controls and the sensor, never the true vehicle).
 struct MonteCarloResult {
   LandmarkWorld world;
-  std::vector<RunResult> runs;
+  int run_count = 0;
+  std::vector<RunResult> runs;          // every run with MonteCarloParams::keep_runs, else empty
+  RunResult first_run;                  // run 0 (the figures draw it)
+  std::vector<RunSummary> summaries;    // one per run, in index order
   std::vector<double> t_s;
   std::vector<double> anees;            // mean NEES over runs at each step
   std::vector<double> position_rmse_m;  // over runs at each step
@@ -83,7 +105,8 @@ struct MonteCarloResult {
 };
 
 // Runs `params.runs` independent runs of `scenario` in parallel, each on a filter from
-// `make_filter`. Run k simulates with noise from Rng::ForStream(seed, k) and observation order
+// `make_filter`, aggregating them as they finish (in batches of params.batch_runs, in index
+// order). A world beyond WorldSpec::max_landmarks is an InputError. Run k simulates with noise from Rng::ForStream(seed, k) and observation order
 // from another stream of the same seed, so the result is identical for any thread count (wall
 // times aside).
 MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,

@@ -16,6 +16,9 @@ struct UniformWorldParams {
   Eigen::Vector2d max_xy_m{25.0, 25.0};
   int count = 0;                 // used when > 0
   double density_per_m2 = 0.0;   // otherwise count = round(density × area)
+  // The most landmarks a world may have: a larger count (or density × area) throws
+  // std::length_error before anything is allocated. Raise it here to allow more.
+  int max_landmarks = 100000;
 };
 
 // One Gaussian cluster of landmarks.
@@ -34,10 +37,14 @@ struct WorldSpec {
   std::vector<ClusterParams> clusters;
   LandmarkWorld given;            // kGiven: read by io from a CSV file
   std::uint64_t seed = 1;         // the world is the same for every Monte Carlo run
+  // The most landmarks a generated world may have (all clusters together): more throws
+  // std::length_error before anything is allocated. Raise it here to allow more.
+  int max_landmarks = 100000;
 };
 
 LandmarkWorld GenerateUniformWorld(const UniformWorldParams& params, Rng& rng);
-LandmarkWorld GenerateClusteredWorld(const std::vector<ClusterParams>& clusters, Rng& rng);
+LandmarkWorld GenerateClusteredWorld(const std::vector<ClusterParams>& clusters, Rng& rng,
+                                     int max_landmarks = 100000);
 // Generates (or copies) the world a spec describes, from Rng(spec.seed).
 LandmarkWorld MakeWorld(const WorldSpec& spec);
 
