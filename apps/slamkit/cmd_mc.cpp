@@ -31,7 +31,7 @@ void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
   const ScenarioParams& scenario = config.scenario;
   const AssociationScore& a = mc.association;
   fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association\n", scenario.name,
-             mc.runs.size(), mc.t_s.size(), mc.world.landmarks.size(),
+             mc.run_count, mc.t_s.size(), mc.world.landmarks.size(),
              config.ekf.known_association() ? "known" : "nearest-neighbour");
   fmt::print("  {:<28}{:>14}\n", "position RMSE [m]", fmt::format("{:.4f}", mc.rmse.position_m));
   fmt::print("  {:<28}{:>14}\n", "heading RMSE [deg]",
@@ -55,14 +55,14 @@ void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenar
                   const MonteCarloResult& mc) {
   PathFigureData path;
   path.title = fmt::format("{}: run 0", scenario.name);
-  path.truth = mc.runs.front().truth;
-  path.estimate = mc.runs.front().estimate;
+  path.truth = mc.first_run.truth;
+  path.estimate = mc.first_run.estimate;
   path.true_landmarks = mc.world;
-  path.map = mc.runs.front().map;
+  path.map = mc.first_run.map;
   WritePathFigure(dir / "map.png", path);
 
   ConsistencyFigureData consistency;
-  consistency.title = fmt::format("{}: {} Monte Carlo runs", scenario.name, mc.runs.size());
+  consistency.title = fmt::format("{}: {} Monte Carlo runs", scenario.name, mc.run_count);
   consistency.t_s = mc.t_s;
   consistency.anees = mc.anees;
   consistency.band_lo = mc.band.lo;
@@ -89,8 +89,12 @@ int RunMonteCarloCommand(const McOptions& options) {
     (void)total;
     progress->Update(done);
   };
-  const MonteCarloResult mc = RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
   const std::filesystem::path& dir = output.staging();
+  // Each run's folder is written as the run finishes and the run dropped, so memory stays flat
+  // however many runs are asked for.
+  params.keep_runs = false;
+  params.on_run = [&dir](int k, const RunResult& run) { WriteMonteCarloRun(dir, k, run); };
+  const MonteCarloResult mc = RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
   // Figures first: metrics.json is written last, so its presence means the run completed.
   if (!options.no_figures) WriteFigures(dir, config.scenario, mc);
   WriteMonteCarloOutputs(dir, MonteCarloMetrics(config, params, mc), mc);

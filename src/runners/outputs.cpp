@@ -15,22 +15,16 @@ nlohmann::json AssociationJson(const AssociationScore& s) {
           {"precision", s.Precision()}, {"recall", s.Recall()}};
 }
 
-nlohmann::json RunJson(int k, const RunResult& r) {
-  double nees_mean = 0.0, time_sum = 0.0, time_max = 0.0;
-  for (double v : r.nees) nees_mean += v / static_cast<double>(r.nees.size());
-  for (double t : r.step_time_s) {
-    time_sum += t;
-    time_max = std::max(time_max, t);
-  }
+nlohmann::json RunJson(int k, const RunSummary& r) {
   return {{"run", k},
           {"position_rmse_m", r.rmse.position_m},
           {"heading_rmse_rad", r.rmse.heading_rad},
-          {"anees", nees_mean},
-          {"landmarks_mapped", r.map.landmarks.size()},
+          {"anees", r.anees},
+          {"landmarks_mapped", r.landmarks_mapped},
           {"map_rmse_m", r.map_rmse_m},
           {"association", AssociationJson(r.association)},
-          {"step_time_mean_s", r.step_time_s.empty() ? 0.0 : time_sum / r.step_time_s.size()},
-          {"step_time_max_s", time_max}};
+          {"step_time_mean_s", r.step_time_mean_s},
+          {"step_time_max_s", r.step_time_max_s}};
 }
 
 void WriteConsistencyCsv(const std::filesystem::path& path, const MonteCarloResult& mc) {
@@ -58,9 +52,9 @@ void WriteErrorsCsv(const std::filesystem::path& path, const RunResult& r) {
 nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
                                  const MonteCarloResult& mc) {
   nlohmann::json per_run = nlohmann::json::array();
-  for (std::size_t k = 0; k < mc.runs.size(); ++k) per_run.push_back(RunJson(int(k), mc.runs[k]));
-  double map_rmse = 0.0;
-  for (const RunResult& r : mc.runs) map_rmse += r.map_rmse_m / double(mc.runs.size());
+  for (std::size_t k = 0; k < mc.summaries.size(); ++k) {
+    per_run.push_back(RunJson(int(k), mc.summaries[k]));
+  }
   const ScenarioParams& scenario = config.scenario;
   return {{"scenario", scenario.name},
           {"motion_model", ToString(scenario.vehicle.kind)},
@@ -75,7 +69,7 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
           {"anees_band", {mc.band.lo, mc.band.hi}},
           {"anees_fraction_in_band", mc.anees_fraction_in_band},
           {"landmarks_mapped", mc.landmarks_mapped_mean},
-          {"map_rmse_m", map_rmse},
+          {"map_rmse_m", mc.map_rmse_mean_m},
           {"association", AssociationJson(mc.association)},
           {"step_time_mean_s", mc.step_time_mean_s},
           {"step_time_max_s", mc.step_time_max_s},
@@ -85,17 +79,19 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
 void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,
                             const MonteCarloResult& mc) {
   std::filesystem::create_directories(dir);
-  for (std::size_t k = 0; k < mc.runs.size(); ++k) {
-    const std::filesystem::path run_dir = dir / fmt::format("run_{}", k);
-    std::filesystem::create_directories(run_dir);
-    WriteTumTrajectory(run_dir / "estimate.tum", mc.runs[k].estimate);
-    WriteTumTrajectory(run_dir / "truth.tum", mc.runs[k].truth);
-    WriteLandmarkMapCsv(run_dir / "map.csv", mc.runs[k].map);
-    WriteErrorsCsv(run_dir / "errors.csv", mc.runs[k]);
-  }
+  for (std::size_t k = 0; k < mc.runs.size(); ++k) WriteMonteCarloRun(dir, int(k), mc.runs[k]);
   WriteLandmarkWorldCsv(dir / "world.csv", mc.world);
   WriteConsistencyCsv(dir / "consistency.csv", mc);
   WriteJson(dir / "metrics.json", metrics);  // last: its presence means the run completed
+}
+
+void WriteMonteCarloRun(const std::filesystem::path& dir, int k, const RunResult& run) {
+  const std::filesystem::path run_dir = dir / fmt::format("run_{}", k);
+  std::filesystem::create_directories(run_dir);
+  WriteTumTrajectory(run_dir / "estimate.tum", run.estimate);
+  WriteTumTrajectory(run_dir / "truth.tum", run.truth);
+  WriteLandmarkMapCsv(run_dir / "map.csv", run.map);
+  WriteErrorsCsv(run_dir / "errors.csv", run);
 }
 
 nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) {

@@ -15,8 +15,14 @@ namespace slamkit {
 nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
                                   const MonteCarloResult& result);
 
-// Writes DIR/metrics.json, DIR/world.csv, DIR/consistency.csv (t, ANEES, RMSEs per step) and
-// DIR/run_<k>/{estimate.tum, truth.tum, map.csv, errors.csv} for every run, each file atomically.
+// Writes DIR/run_<k>/{estimate.tum, truth.tum, map.csv, errors.csv}, each file atomically: the
+// per-run outputs, written as each run finishes (MonteCarloParams::on_run) so that no run has to
+// be kept.
+void WriteMonteCarloRun(const std::filesystem::path& dir, int k, const RunResult& run);
+
+// Writes DIR/metrics.json, DIR/world.csv, DIR/consistency.csv (t, ANEES, RMSEs per step) and,
+// for the runs `result` kept (MonteCarloParams::keep_runs), DIR/run_<k>/ as WriteMonteCarloRun;
+// each file atomically, metrics.json last.
 void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,
                             const MonteCarloResult& result);
 
