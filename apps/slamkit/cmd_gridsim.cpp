@@ -115,6 +115,7 @@ void AddSimulationOptions(CLI::App* cmd, GridSimOptions& o) {
                   "route: `x y` lines in metres (required with a plan file)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--sim-seed", o.sim_seed, "random seed of the simulated run")
+      ->check(SeedNumber())
       ->capture_default_str();
   cmd->add_option("--loops", o.sim.route.loops, "times around the route")->capture_default_str()
       ->check(CLI::Range(1, 100));

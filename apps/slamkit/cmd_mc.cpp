@@ -106,7 +106,8 @@ int RunMonteCarloCommand(const McOptions& options) {
 
 void AddCommonOptions(CLI::App& cmd, McOptions& o) {
   cmd.add_option("--runs", o.runs, "Monte Carlo runs")->check(CLI::Range(1, 100000));
-  cmd.add_option("--seed", o.seed, "master seed: run k uses stream k of it");
+  cmd.add_option("--seed", o.seed, "master seed: run k uses stream k of it")
+      ->check(SeedNumber());
   cmd.add_option("--threads", o.threads, "worker threads (0: all the CPUs this process may use)")
       ->check(CLI::Range(0, 1024));
   cmd.add_flag("--no-figures", o.no_figures, "skip the PNG figures");

@@ -49,6 +49,21 @@ CLI::Validator NonNegativeNumber() {
   return NumberCheck(">= 0", [](double v) { return v >= 0.0; });
 }
 
+CLI::Validator SeedNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::uint64_t value = 0;
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits || !CLI::detail::lexical_cast(text, value)) {
+          return fmt::format("must be a whole number from 0 to 18446744073709551615, got '{}'",
+                             text);
+        }
+        return {};
+      },
+      "SEED");
+}
+
 OutputDir::OutputDir(const std::string& out) {
   namespace fs = std::filesystem;
   if (out.empty()) throw InputError("--out: the output directory is empty");
@@ -114,7 +129,9 @@ void OutputDir::Commit() {
 void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
   cmd->add_option("--particles", p.particles, "particles")->capture_default_str()
       ->check(CLI::Range(1, 10000));
-  cmd->add_option("--seed", p.seed, "random seed of the filter")->capture_default_str();
+  cmd->add_option("--seed", p.seed, "random seed of the filter")
+      ->check(SeedNumber())
+      ->capture_default_str();
   cmd->add_option("--linear-update", p.linear_update_m, "update after driving this far [m]")
       ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--angular-update", p.angular_update_rad, "update after turning this far [rad]")

@@ -17,6 +17,8 @@ namespace slamkit::app {
 // CLI::PositiveNumber's says "not in range 0.000000 to 1797693134862315708...".
 CLI::Validator PositiveNumber();
 CLI::Validator NonNegativeNumber();
+// A seed: digits only, 0 to 2^64 - 1 (CLI11 would read "-1" as 2^64 - 1).
+CLI::Validator SeedNumber();
 
 // A run's output directory (--out), made before the run and put in place after it: the run
 // writes into a fresh hidden folder beside it (`.NAME.partial-XXXXXX`), which Commit() renames

@@ -233,6 +233,21 @@ TEST(Cli, RangeErrorsSayTheRangeInWords) {
   EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
+// Issue 8 item 10: a negative seed is refused, not wrapped to 2^64 - 1.
+TEST(Cli, NegativeSeedIsRefused) {
+  const fs::path dir = FreshDir("negative_seed");
+  const std::string out = " --out " + (dir / "out").string();
+  const std::string cases[] = {
+      "mc --config " + std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yaml --runs 1 --seed -1",
+      "gridsim --seed -1", "gridsim --sim-seed -2"};
+  for (const std::string& args : cases) {
+    const auto r = RunCli(args + out);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("must be a whole number from 0"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 // Issue 8 item 17: progress lines show the elapsed time, and no rate before time has passed to
 // measure one (the first line said "1250000000 scans/s").
 TEST(Cli, FirstProgressLineHasElapsedTimeAndNoRate) {
