@@ -21,4 +21,10 @@ decltype(auto) WithDim(int d, F&& f) {
   }
 }
 
+// Calls f(D0, D1) with the two dimensions as integral constants (a two-block observation).
+template <typename F>
+decltype(auto) WithDims(int d0, int d1, F&& f) {
+  return WithDim(d0, [&](auto D0) { return WithDim(d1, [&](auto D1) { return f(D0, D1); }); });
+}
+
 }  // namespace slamkit::internal

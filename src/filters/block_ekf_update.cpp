@@ -11,6 +11,7 @@
 namespace slamkit {
 
 using internal::WithDim;
+using internal::WithDims;
 
 template <int R, int C>
 Eigen::Matrix<double, R, C> BlockEkf::CurrentBlock(int r, int c) const {
@@ -67,12 +68,10 @@ Eigen::Matrix<double, Eigen::Dynamic, kZ> BlockEkf::CovarianceTimesHt(
     Eigen::MatrixXd scratch_0, scratch_1;
     const Eigen::Ref<const Eigen::MatrixXd> P_0 = BlockColumns(H[0].block, scratch_0);
     const Eigen::Ref<const Eigen::MatrixXd> P_1 = BlockColumns(H[1].block, scratch_1);
-    WithDim(BlockDim(H[0].block), [&](auto D0) {
-      WithDim(BlockDim(H[1].block), [&](auto D1) {
-        const Eigen::Matrix<double, kZ, decltype(D0)::value> J_0 = H[0].J;
-        const Eigen::Matrix<double, kZ, decltype(D1)::value> J_1 = H[1].J;
-        PHt = P_0 * J_0.transpose() + P_1 * J_1.transpose();
-      });
+    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+      const Eigen::Matrix<double, kZ, decltype(D0)::value> J_0 = H[0].J;
+      const Eigen::Matrix<double, kZ, decltype(D1)::value> J_1 = H[1].J;
+      PHt = P_0 * J_0.transpose() + P_1 * J_1.transpose();
     });
     return PHt;
   }
@@ -96,14 +95,12 @@ Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFromPHt(
   const Eigen::Matrix<double, kZ, kZ> R = obs.R;
   Eigen::Matrix<double, kZ, kZ> S;
   if (H.size() == 2) {
-    WithDim(BlockDim(H[0].block), [&](auto D0) {
-      WithDim(BlockDim(H[1].block), [&](auto D1) {
-        constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
-        const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
-        const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
-        S = J_0 * PHt.template middleRows<kD0>(BlockOffset(H[0].block)) +
-            J_1 * PHt.template middleRows<kD1>(BlockOffset(H[1].block)) + R;
-      });
+    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+      constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
+      const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
+      const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
+      S = J_0 * PHt.template middleRows<kD0>(BlockOffset(H[0].block)) +
+          J_1 * PHt.template middleRows<kD1>(BlockOffset(H[1].block)) + R;
     });
     return S;
   }
@@ -174,15 +171,12 @@ Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearis
   const MatrixZ R = obs.R;
   MatrixZ S = MatrixZ::Zero();
   if (H.size() == 2) {
-    WithDim(BlockDim(H[0].block), [&](auto D0) {
-      WithDim(BlockDim(H[1].block), [&](auto D1) {
-        constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
-        const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
-        const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
-        const Eigen::Matrix<double, kD0, kD0> P_00 =
-            CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
-        S = TwoBlockS<kZ, kD0, kD1>(P_00, H[0].block, H[1].block, J_0, J_1, R);
-      });
+    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+      constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
+      const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
+      const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
+      const Eigen::Matrix<double, kD0, kD0> P_00 = CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
+      S = TwoBlockS<kZ, kD0, kD1>(P_00, H[0].block, H[1].block, J_0, J_1, R);
     });
     return S;
   }
