@@ -9,6 +9,7 @@
 #include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/core/angle.hpp"
+#include "slamkit/core/cpu.hpp"
 #include "slamkit/runners/outputs.hpp"
 #include "slamkit/runners/scenario_config.hpp"
 #include "slamkit/report/figures.hpp"
@@ -90,14 +91,18 @@ int RunMonteCarloCommand(const McOptions& options) {
     progress->Update(done);
   };
   const std::filesystem::path& dir = output.staging();
-  // Each run's folder is written as the run finishes and the run dropped, so memory stays flat
+  // Each run is written as it finishes and dropped, summary included, so memory stays flat
   // however many runs are asked for.
   params.keep_runs = false;
-  params.on_run = [&dir](int k, const RunResult& run) { WriteMonteCarloRun(dir, k, run); };
+  params.keep_summaries = false;
+  MonteCarloWriter writer(dir);
+  params.on_run = [&writer](int k, const RunResult& run, const RunSummary& summary) {
+    writer.Add(k, run, summary);
+  };
   const MonteCarloResult mc = RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
   // Figures first: metrics.json is written last, so its presence means the run completed.
   if (!options.no_figures) WriteFigures(dir, config.scenario, mc);
-  WriteMonteCarloOutputs(dir, MonteCarloMetrics(config, params, mc), mc);
+  writer.Finish(MonteCarloMetrics(config, params, mc), mc);
   output.Commit();
   PrintSummary(config, mc);
   fmt::print("wrote {}\n", options.out);

@@ -1,12 +1,10 @@
 #include "progress.hpp"
 
-#include <sched.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <thread>
 
 namespace slamkit::app {
 namespace {
@@ -34,17 +32,6 @@ std::string FormatDuration(double seconds) {
   const auto s = static_cast<long long>(std::llround(seconds));
   if (s < 3600) return fmt::format("{}:{:02}", s / 60, s % 60);
   return fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60);
-}
-
-int UsableCpuCount() noexcept {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof(set), &set) == 0) {
-    const int n = CPU_COUNT(&set);
-    if (n > 0) return n;
-  }
-  const unsigned hw = std::thread::hardware_concurrency();
-  return hw > 0 ? static_cast<int>(hw) : 1;
 }
 
 Progress::Progress(std::string label, int total)

@@ -41,8 +41,4 @@ class Progress {
 // "1:05" or "12.3 s" for a duration in seconds.
 std::string FormatDuration(double seconds);
 
-// The CPUs this process may run on (its affinity mask, as `taskset` sets it), at least 1: what a
-// thread count of 0 ("all") means.
-int UsableCpuCount() noexcept;
-
 }  // namespace slamkit::app

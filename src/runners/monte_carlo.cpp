@@ -7,12 +7,12 @@
 #include <span>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <unordered_map>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "slamkit/core/cpu.hpp"
 #include "slamkit/eval/alignment.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/io/error.hpp"
@@ -253,10 +253,9 @@ MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
   }
   mc.band = AneesBand(params.runs, 3);
   mc.run_count = params.runs;
-  mc.summaries.reserve(static_cast<std::size_t>(params.runs));
+  if (params.keep_summaries) mc.summaries.reserve(static_cast<std::size_t>(params.runs));
   if (params.keep_runs) mc.runs.reserve(static_cast<std::size_t>(params.runs));
-  const int threads = params.threads > 0 ? params.threads
-                                         : static_cast<int>(std::thread::hardware_concurrency());
+  const int threads = params.threads > 0 ? params.threads : UsableCpuCount();
   Aggregator aggregate(mc, params.runs);
   std::mutex progress_mutex;
   int finished = 0;
@@ -288,8 +287,9 @@ MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
         for (std::size_t i = 1; i < truth.size(); ++i) mc.t_s.push_back(truth[i].t_s);  // [0]: start
       }
       aggregate.Add(r);
-      mc.summaries.push_back(SummaryOf(r));
-      if (params.on_run) params.on_run(k, r);
+      const RunSummary summary = SummaryOf(r);
+      if (params.on_run) params.on_run(k, r, summary);
+      if (params.keep_summaries) mc.summaries.push_back(summary);
       if (params.keep_runs) {
         mc.runs.push_back(std::move(r));
       } else if (k == 0) {

@@ -1,5 +1,9 @@
 #include "slamkit/runners/outputs.hpp"
 
+#include <stdexcept>
+#include <string>
+#include <utility>
+
 #include <fmt/format.h>
 
 #include "slamkit/io/atomic_file.hpp"
@@ -13,18 +17,6 @@ nlohmann::json AssociationJson(const AssociationScore& s) {
   return {{"sightings", s.sightings}, {"matched", s.matched},   {"correct", s.correct},
           {"matchable", s.matchable}, {"created", s.created},   {"dropped", s.dropped},
           {"precision", s.Precision()}, {"recall", s.Recall()}};
-}
-
-nlohmann::json RunJson(int k, const RunSummary& r) {
-  return {{"run", k},
-          {"position_rmse_m", r.rmse.position_m},
-          {"heading_rmse_rad", r.rmse.heading_rad},
-          {"anees", r.anees},
-          {"landmarks_mapped", r.landmarks_mapped},
-          {"map_rmse_m", r.map_rmse_m},
-          {"association", AssociationJson(r.association)},
-          {"step_time_mean_s", r.step_time_mean_s},
-          {"step_time_max_s", r.step_time_max_s}};
 }
 
 void WriteConsistencyCsv(const std::filesystem::path& path, const MonteCarloResult& mc) {
@@ -47,14 +39,32 @@ void WriteErrorsCsv(const std::filesystem::path& path, const RunResult& r) {
   });
 }
 
+// `json` as dump(2) would print it inside an array inside the top-level object.
+std::string IndentedEntry(const nlohmann::json& json) {
+  std::string out = "    ";
+  for (const char c : json.dump(2)) {
+    out += c;
+    if (c == '\n') out += "    ";
+  }
+  return out;
+}
+
 }  // namespace
+
+nlohmann::json RunSummaryJson(int k, const RunSummary& r) {
+  return {{"run", k},
+          {"position_rmse_m", r.rmse.position_m},
+          {"heading_rmse_rad", r.rmse.heading_rad},
+          {"anees", r.anees},
+          {"landmarks_mapped", r.landmarks_mapped},
+          {"map_rmse_m", r.map_rmse_m},
+          {"association", AssociationJson(r.association)},
+          {"step_time_mean_s", r.step_time_mean_s},
+          {"step_time_max_s", r.step_time_max_s}};
+}
 
 nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
                                  const MonteCarloResult& mc) {
-  nlohmann::json per_run = nlohmann::json::array();
-  for (std::size_t k = 0; k < mc.summaries.size(); ++k) {
-    per_run.push_back(RunJson(int(k), mc.summaries[k]));
-  }
   const ScenarioParams& scenario = config.scenario;
   return {{"scenario", scenario.name},
           {"motion_model", ToString(scenario.vehicle.kind)},
@@ -72,26 +82,61 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
           {"map_rmse_m", mc.map_rmse_mean_m},
           {"association", AssociationJson(mc.association)},
           {"step_time_mean_s", mc.step_time_mean_s},
-          {"step_time_max_s", mc.step_time_max_s},
-          {"per_run", per_run}};
+          {"step_time_max_s", mc.step_time_max_s}};
 }
 
-void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,
-                            const MonteCarloResult& mc) {
-  std::filesystem::create_directories(dir);
-  for (std::size_t k = 0; k < mc.runs.size(); ++k) WriteMonteCarloRun(dir, int(k), mc.runs[k]);
-  WriteLandmarkWorldCsv(dir / "world.csv", mc.world);
-  WriteConsistencyCsv(dir / "consistency.csv", mc);
-  WriteJson(dir / "metrics.json", metrics);  // last: its presence means the run completed
+MonteCarloWriter::MonteCarloWriter(std::filesystem::path dir)
+    : dir_(std::move(dir)), scratch_path_(dir_ / ".per_run.partial") {
+  std::filesystem::create_directories(dir_);
+  scratch_.open(scratch_path_, std::ios::binary | std::ios::trunc);
+  if (!scratch_) throw std::runtime_error("cannot write " + scratch_path_.string());
 }
 
-void WriteMonteCarloRun(const std::filesystem::path& dir, int k, const RunResult& run) {
-  const std::filesystem::path run_dir = dir / fmt::format("run_{}", k);
+MonteCarloWriter::~MonteCarloWriter() {
+  scratch_.close();
+  std::error_code ignored;
+  std::filesystem::remove(scratch_path_, ignored);
+}
+
+void MonteCarloWriter::Add(int k, const RunResult& run, const RunSummary& summary) {
+  const std::filesystem::path run_dir = dir_ / fmt::format("run_{}", k);
   std::filesystem::create_directories(run_dir);
   WriteTumTrajectory(run_dir / "estimate.tum", run.estimate);
   WriteTumTrajectory(run_dir / "truth.tum", run.truth);
   WriteLandmarkMapCsv(run_dir / "map.csv", run.map);
   WriteErrorsCsv(run_dir / "errors.csv", run);
+  scratch_ << (runs_ > 0 ? ",\n" : "") << IndentedEntry(RunSummaryJson(k, summary));
+  if (!scratch_) throw std::runtime_error("cannot write " + scratch_path_.string());
+  ++runs_;
+}
+
+void MonteCarloWriter::Finish(const nlohmann::json& summary, const MonteCarloResult& mc) {
+  WriteLandmarkWorldCsv(dir_ / "world.csv", mc.world);
+  WriteConsistencyCsv(dir_ / "consistency.csv", mc);
+  scratch_.close();
+  if (!scratch_) throw std::runtime_error("cannot write " + scratch_path_.string());
+  std::string head = summary.dump(2);  // "{\n  ...\n}": per_run goes before the closing brace
+  head.pop_back();
+  while (!head.empty() && head.back() == '\n') head.pop_back();
+  WriteFileAtomically(dir_ / "metrics.json", [&](std::ostream& out) {
+    out << head << (summary.empty() ? "" : ",") << "\n  \"per_run\": [";
+    std::ifstream entries(scratch_path_, std::ios::binary);
+    if (runs_ > 0) out << "\n" << entries.rdbuf() << "\n  ";
+    if (!entries) throw std::runtime_error("cannot read " + scratch_path_.string());
+    out << "]\n}\n";
+  });
+  std::filesystem::remove(scratch_path_);
+}
+
+void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::json& summary,
+                            const MonteCarloResult& mc) {
+  const auto runs = static_cast<std::size_t>(mc.run_count);
+  if (mc.runs.size() != runs || mc.summaries.size() != runs) {
+    throw std::invalid_argument("WriteMonteCarloOutputs: the result kept no runs or summaries");
+  }
+  MonteCarloWriter writer(dir);
+  for (std::size_t k = 0; k < mc.runs.size(); ++k) writer.Add(int(k), mc.runs[k], mc.summaries[k]);
+  writer.Finish(summary, mc);
 }
 
 nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) {

@@ -101,8 +101,9 @@ TEST(MonteCarlo, SameSeedSameResultWhateverTheThreadCount) {
   EXPECT_NE(one.anees, other.anees);
 }
 
-// Issue 8, item 6: without keep_runs the runs are aggregated as they finish and dropped, with the
-// same figures bit for bit; on_run sees every run once, in index order.
+// Issue 8, item 6: without keep_runs and keep_summaries the runs are aggregated as they finish
+// and dropped, with the same figures bit for bit; on_run sees every run and its summary once, in
+// index order.
 TEST(MonteCarlo, StreamingRunsGivesTheSameFiguresWithoutKeepingRuns) {
   MonteCarloParams params;
   params.runs = 7;
@@ -110,22 +111,28 @@ TEST(MonteCarlo, StreamingRunsGivesTheSameFiguresWithoutKeepingRuns) {
   params.threads = 2;
   const MonteCarloResult kept = RunMonteCarlo(ShortScenario(false), params);
   params.keep_runs = false;
+  params.keep_summaries = false;
   params.batch_runs = 3;  // batches of 3, 3 and 1
   std::vector<int> seen;
   std::vector<double> rmse_seen;
-  params.on_run = [&](int k, const RunResult& r) {
+  std::vector<RunSummary> summaries_seen;
+  params.on_run = [&](int k, const RunResult& r, const RunSummary& summary) {
     seen.push_back(k);
     rmse_seen.push_back(r.rmse.position_m);
+    summaries_seen.push_back(summary);
   };
   const MonteCarloResult streamed = RunMonteCarlo(ShortScenario(false), params);
   EXPECT_TRUE(streamed.runs.empty());
+  EXPECT_TRUE(streamed.summaries.empty());
   EXPECT_EQ(seen, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
   ASSERT_EQ(kept.runs.size(), 7u);
-  ASSERT_EQ(streamed.summaries.size(), 7u);
+  ASSERT_EQ(kept.summaries.size(), 7u);
+  ASSERT_EQ(summaries_seen.size(), 7u);
   for (int k = 0; k < 7; ++k) {
     EXPECT_EQ(rmse_seen[k], kept.runs[k].rmse.position_m);
-    EXPECT_EQ(streamed.summaries[k].rmse.position_m, kept.runs[k].rmse.position_m);
-    EXPECT_EQ(streamed.summaries[k].landmarks_mapped, kept.runs[k].map.landmarks.size());
+    EXPECT_EQ(summaries_seen[k].rmse.position_m, kept.runs[k].rmse.position_m);
+    EXPECT_EQ(summaries_seen[k].anees, kept.summaries[k].anees);
+    EXPECT_EQ(summaries_seen[k].landmarks_mapped, kept.runs[k].map.landmarks.size());
   }
   EXPECT_EQ(streamed.run_count, 7);
   EXPECT_EQ(streamed.first_run.nees, kept.runs[0].nees);

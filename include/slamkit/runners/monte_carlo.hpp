@@ -52,24 +52,6 @@ struct RunResult {
 RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
                             const LandmarkWorld& world, double dt_s, bool known_association);
 
-struct MonteCarloParams {
-  int runs = 50;
-  std::uint64_t seed = 1;
-  int threads = 0;  // 0: all hardware threads
-  // Give the filter the simulator's true landmark ids with each observation.
-  bool known_association = false;
-  // Called after each finished run with (finished, total), from worker threads one at a time.
-  std::function<void(int, int)> progress;
-  // Keep every RunResult in MonteCarloResult::runs. Without it only run 0 (first_run) and the
-  // per-run summaries are kept: memory then grows by a RunSummary per run, not a whole run.
-  bool keep_runs = true;
-  // Called with (k, run k) for every run, in index order, from the calling thread, as soon as
-  // the batch holding run k has finished: per-run outputs can be written here, one run at a time.
-  std::function<void(int, const RunResult&)> on_run;
-  // Runs simulated in parallel before they are aggregated and dropped (memory holds one batch).
-  int batch_runs = 64;
-};
-
 // What the outputs keep of one run (metrics.json's per_run).
 struct RunSummary {
   PoseRmse rmse;
@@ -81,6 +63,26 @@ struct RunSummary {
   double step_time_max_s = 0.0;
 };
 
+struct MonteCarloParams {
+  int runs = 50;
+  std::uint64_t seed = 1;
+  int threads = 0;  // 0: all the CPUs this process may use (UsableCpuCount)
+  // Give the filter the simulator's true landmark ids with each observation.
+  bool known_association = false;
+  // Called after each finished run with (finished, total), from worker threads one at a time.
+  std::function<void(int, int)> progress;
+  // Keep every RunResult in MonteCarloResult::runs. Without it only run 0 (first_run) is kept.
+  bool keep_runs = true;
+  // Keep every RunSummary in MonteCarloResult::summaries. Without it, and without keep_runs,
+  // memory is flat in the number of runs: on_run is then the only place a run is seen.
+  bool keep_summaries = true;
+  // Called with (k, run k, its summary) for every run, in index order, from the calling thread,
+  // as soon as the batch holding run k has finished: per-run outputs are written here.
+  std::function<void(int, const RunResult&, const RunSummary&)> on_run;
+  // Runs simulated in parallel before they are aggregated and dropped (memory holds one batch).
+  int batch_runs = 64;
+};
+
 // Aggregates over runs. Per-step series are over the runs (all runs share the true trajectory:
 // noise enters through the controls and the sensor, never the true vehicle).
 struct MonteCarloResult {
@@ -88,7 +90,7 @@ struct MonteCarloResult {
   int run_count = 0;
   std::vector<RunResult> runs;          // every run with MonteCarloParams::keep_runs, else empty
   RunResult first_run;                  // run 0 (the figures draw it)
-  std::vector<RunSummary> summaries;    // one per run, in index order
+  std::vector<RunSummary> summaries;    // one per run, in index order, with keep_summaries
   std::vector<double> t_s;
   std::vector<double> anees;            // mean NEES over runs at each step
   std::vector<double> position_rmse_m;  // over runs at each step
