@@ -1,8 +1,12 @@
 // `slamkit grid`: occupancy-grid RBPF SLAM over a CARMEN laser log.
+#include <exception>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -10,7 +14,9 @@
 #include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/runners/grid_run.hpp"
+#include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
+#include "slamkit/io/trajectory_reader.hpp"
 #include "slamkit/io/writers.hpp"
 
 namespace slamkit::app {
@@ -19,6 +25,8 @@ namespace {
 struct GridOptions {
   std::string log;
   std::string relations;
+  std::string reference;
+  PairBy pair_by = PairBy::kTime;
   std::string out;
   bool skip_bad_lines = false;
   bool reference_from_log = false;
@@ -27,6 +35,63 @@ struct GridOptions {
   double max_range_m = 0.0;  // 0: from the log
   RbpfGridSlamParams params;
 };
+
+// The reference poses to compare with, checked before the long run: read from --reference, or
+// the log's own (--reference-from-log); nullopt without either.
+std::optional<Trajectory> LoadReference(const GridOptions& o, const CarmenLog& log) {
+  if (o.reference_from_log) {
+    bool odometry_is_pose = !log.scans.empty();
+    for (const LaserScan& scan : log.scans) {
+      odometry_is_pose = odometry_is_pose &&
+                         (scan.odometry.vector() - scan.logged_pose.vector()).norm() < 1e-9;
+    }
+    if (odometry_is_pose) {
+      PrintStderr("warning: {}: every scan's odometry equals its logged pose, so the filter is "
+                  "given the reference as its odometry and this comparison measures nothing\n",
+                  o.log);
+    }
+    return LoggedTrajectory(log);
+  }
+  if (o.reference.empty()) return std::nullopt;
+  Trajectory reference = ReadTrajectory(o.reference);
+  if (o.pair_by == PairBy::kIndex) {
+    if (o.max_scans > 0 && reference.size() > log.scans.size()) reference.resize(log.scans.size());
+    if (reference.size() != log.scans.size()) {
+      throw InputError(fmt::format("{}: {} poses for the {} scans of {} (--pair-by index pairs "
+                                   "pose i with scan i)",
+                                   o.reference, reference.size(), log.scans.size(), o.log));
+    }
+  } else if (const std::string problem = TimestampProblem(reference); !problem.empty()) {
+    throw InputError(fmt::format("{}: its timestamps cannot pair poses ({}): use --pair-by index",
+                                 o.reference, problem));
+  }
+  return reference;
+}
+
+// The evaluations after the run. A failing one is reported and recorded, never allowed to lose
+// the run's outputs.
+struct GridEvaluation {
+  std::optional<RelationErrorStats> relations;
+  std::optional<ReferenceComparison> reference;
+  std::string error;
+};
+
+GridEvaluation Evaluate(const GridOptions& o, const GridRunResult& result,
+                        std::vector<PoseRelation> relations,
+                        const std::optional<Trajectory>& reference) {
+  GridEvaluation e;
+  try {
+    if (o.max_scans > 0) relations = RelationsCovered(result.trajectory, relations);
+    if (!relations.empty()) e.relations = EvaluateRelations(result.trajectory, relations);
+    if (reference) {
+      e.reference = CompareWithReference(result.trajectory, *reference,
+                                         o.reference_from_log ? PairBy::kIndex : o.pair_by);
+    }
+  } catch (const std::exception& ex) {
+    e.error = ex.what();
+  }
+  return e;
+}
 
 int RunGridCommand(const GridOptions& o) {
   CarmenReadOptions read_options;
@@ -40,35 +105,46 @@ int RunGridCommand(const GridOptions& o) {
   if (log.skipped_lines > 0) PrintStderr("{}: skipped {} bad lines\n", o.log, log.skipped_lines);
   std::vector<PoseRelation> relations;
   if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
+  const std::optional<Trajectory> reference = LoadReference(o, log);
   OutputDir output(o.out);
 
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
   const GridRunResult result =
       RunGridSlam(log, o.params, [progress](int done, int) { progress->Update(done); });
-  std::optional<RelationErrorStats> errors;
-  if (o.max_scans > 0) relations = RelationsCovered(result.trajectory, relations);
-  if (!relations.empty()) errors = EvaluateRelations(result.trajectory, relations);
-  std::optional<ReferenceComparison> reference;
-  if (o.reference_from_log) {
-    reference = CompareWithReference(result.trajectory, LoggedTrajectory(log));
-  }
+  const GridEvaluation eval = Evaluate(o, result, std::move(relations), reference);
 
   const std::filesystem::path& dir = output.staging();
   WriteGridOutputs(dir, result);
-  WriteJson(dir / "metrics.json",
-            GridMetrics(result, o.params, errors ? &*errors : nullptr,
-                        reference ? &*reference : nullptr, PeakRssMib()));
+  nlohmann::json metrics = GridMetrics(result, o.params, eval.relations ? &*eval.relations : nullptr,
+                                       eval.reference ? &*eval.reference : nullptr, PeakRssMib());
+  if (!o.reference.empty()) {
+    metrics["reference"] = o.reference;
+    metrics["pair_by"] = o.pair_by == PairBy::kIndex ? "index" : "time";
+  }
+  if (!eval.error.empty()) metrics["evaluation_error"] = eval.error;
+  WriteJson(dir / "metrics.json", metrics);
 
   PrintGridRun(o.log, result, o.params.particles);
-  if (errors) {
+  if (eval.relations) {
     fmt::print("  {:<28}{:>12}\n", "relations: translation [m]",
-               fmt::format("{:.4f} ± {:.4f}", errors->trans_mean_m, errors->trans_std_m));
+               fmt::format("{:.4f} ± {:.4f}", eval.relations->trans_mean_m,
+                           eval.relations->trans_std_m));
     fmt::print("  {:<28}{:>12}\n", "relations: rotation [deg]",
-               fmt::format("{:.3f} ± {:.3f}", errors->rot_mean_deg, errors->rot_std_deg));
+               fmt::format("{:.3f} ± {:.3f}", eval.relations->rot_mean_deg,
+                           eval.relations->rot_std_deg));
+    if (eval.relations->skipped > 0) {
+      PrintStderr("warning: {} relations lie outside the run's time span and were skipped\n",
+                  eval.relations->skipped);
+    }
   }
   output.Commit();
-  if (reference) PrintComparison("log poses", *reference);
+  if (eval.reference) PrintComparison(o.reference_from_log ? "log poses" : "reference", *eval.reference);
   fmt::print("wrote {}\n", o.out);
+  if (!eval.error.empty()) {
+    PrintStderr("error: the evaluation failed ({}); the run's outputs are kept in {}\n",
+                eval.error, o.out);
+    return 1;
+  }
   return 0;
 }
 
@@ -98,8 +174,17 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_flag("--interpolate-odometry", o->interpolate_odometry,
                 "odometry at each scan interpolated from the ODOM records at the scan's time, "
                 "instead of the scan record's own odometry fields");
+  cmd->add_option("--reference", o->reference,
+                  "reference poses, one per line: `t x y theta` or TUM; ATE and RPE against them")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--pair-by", o->pair_by,
+                  "pair --reference poses with scans by timestamp (time) or by order (index)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, PairBy>{{"time", PairBy::kTime}, {"index", PairBy::kIndex}}))
+      ->default_str("time");
   cmd->add_flag("--reference-from-log", o->reference_from_log,
-                "compare with the poses the log gives (corrected logs): ATE and RPE");
+                "compare with the poses the log gives (corrected logs): ATE and RPE, by index")
+      ->excludes("--reference");
   cmd->callback([o, &exit_code] {
     exit_code = RunGridCommand(*o);
   });

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -26,15 +27,6 @@ MeanStd Summarise(const std::vector<double>& values) {
   double sq = 0.0;
   for (double v : values) sq += (v - mean) * (v - mean);
   return {mean, std::sqrt(sq / double(values.size()))};
-}
-
-const Pose2& PoseAt(const Trajectory& trajectory, double t_s, double tolerance_s) {
-  const int i = FindPoseAt(trajectory, t_s, tolerance_s);
-  if (i < 0) {
-    throw std::invalid_argument(
-        fmt::format("no estimated pose within {} s of relation time {:.6f}", tolerance_s, t_s));
-  }
-  return trajectory[i].pose;
 }
 
 // Logs whose clock jitters (intel.clf) give trajectories slightly out of time order.
@@ -63,6 +55,21 @@ int FindPoseAt(const Trajectory& trajectory, double t_s, double time_tolerance_s
   return best;
 }
 
+std::optional<Pose2> InterpolatePoseAt(const Trajectory& trajectory, double t_s,
+                                       double time_tolerance_s) {
+  const int nearest = FindPoseAt(trajectory, t_s, time_tolerance_s);
+  if (nearest >= 0) return trajectory[static_cast<std::size_t>(nearest)].pose;
+  const auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t_s,
+                                      [](const StampedPose& p, double t) { return p.t_s < t; });
+  if (after == trajectory.begin() || after == trajectory.end()) return std::nullopt;
+  const StampedPose& a = *std::prev(after);
+  const StampedPose& b = *after;
+  const double s = (t_s - a.t_s) / (b.t_s - a.t_s);  // b.t_s > t_s > a.t_s: no division by 0
+  const Eigen::Vector2d p = a.pose.translation() + s * (b.pose.translation() - a.pose.translation());
+  const double heading = a.pose.theta() + s * WrapAngle(b.pose.theta() - a.pose.theta());
+  return Pose2(p.x(), p.y(), WrapAngle(heading));
+}
+
 // Kümmerle et al. 2009, Eq. 2 with the translational and rotational parts kept apart.
 RelationErrorStats EvaluateRelations(const Trajectory& unsorted_estimate,
                                      std::span<const PoseRelation> relations,
@@ -71,15 +78,20 @@ RelationErrorStats EvaluateRelations(const Trajectory& unsorted_estimate,
   std::vector<double> trans, rot;
   trans.reserve(relations.size());
   rot.reserve(relations.size());
+  int skipped = 0;
   for (const PoseRelation& r : relations) {
-    const Pose2 delta = PoseAt(estimate, r.t1_s, time_tolerance_s)
-                            .Between(PoseAt(estimate, r.t2_s, time_tolerance_s));
-    const Pose2 error = r.delta.Between(delta);
+    const std::optional<Pose2> x1 = InterpolatePoseAt(estimate, r.t1_s, time_tolerance_s);
+    const std::optional<Pose2> x2 = InterpolatePoseAt(estimate, r.t2_s, time_tolerance_s);
+    if (!x1 || !x2) {
+      ++skipped;
+      continue;
+    }
+    const Pose2 error = r.delta.Between(x1->Between(*x2));
     trans.push_back(error.translation().norm());
     rot.push_back(RadToDeg(std::abs(error.theta())));
   }
   const MeanStd t = Summarise(trans), a = Summarise(rot);
-  return {static_cast<int>(relations.size()), t.mean, t.std, a.mean, a.std};
+  return {static_cast<int>(trans.size()), skipped, t.mean, t.std, a.mean, a.std};
 }
 
 std::vector<PoseRelation> RelationsCovered(const Trajectory& trajectory,
@@ -139,6 +151,45 @@ ReferenceComparison CompareWithReference(const Trajectory& estimate, const Traje
     relations.push_back({double(i), double(i + step), ref[i].pose.Between(ref[i + step].pose)});
   }
   return {AbsoluteTrajectoryError(est, ref, 0.25), EvaluateRelations(est, relations, 0.25)};
+}
+
+}  // namespace slamkit
+
+namespace slamkit {
+
+ReferenceComparison CompareWithReference(const Trajectory& estimate, const Trajectory& reference,
+                                         PairBy pair_by, double time_tolerance_s) {
+  if (pair_by == PairBy::kIndex) return CompareWithReference(estimate, reference);
+  const Trajectory sorted = SortedByTime(estimate);
+  Trajectory paired_estimate, paired_reference;
+  for (const StampedPose& ref : reference) {
+    const int i = FindPoseAt(sorted, ref.t_s, time_tolerance_s);
+    if (i < 0) continue;
+    paired_estimate.push_back(sorted[static_cast<std::size_t>(i)]);
+    paired_reference.push_back(ref);
+  }
+  if (paired_reference.empty()) {
+    throw std::invalid_argument(fmt::format(
+        "no reference pose has an estimated pose within {} s (pair by index instead?)",
+        time_tolerance_s));
+  }
+  return CompareWithReference(paired_estimate, paired_reference);
+}
+
+std::string TimestampProblem(const Trajectory& trajectory, double time_tolerance_s) {
+  int repeated = 0, backwards = 0;
+  for (std::size_t i = 1; i < trajectory.size(); ++i) {
+    const double dt = trajectory[i].t_s - trajectory[i - 1].t_s;
+    if (std::abs(dt) <= time_tolerance_s) {
+      ++repeated;
+    } else if (dt < 0.0) {
+      ++backwards;
+    }
+  }
+  if (repeated == 0 && backwards == 0) return "";
+  return fmt::format("{} of {} timestamps repeat the previous one (within {} s) and {} go "
+                     "backwards",
+                     repeated, trajectory.size(), time_tolerance_s, backwards);
 }
 
 }  // namespace slamkit

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -75,6 +76,68 @@ TEST(Intel, TrackingBetweenUpdatesCutsTheRotationError) {
   const double odometry = rotation_error("--no-tracking");
   EXPECT_LT(tracked, 0.5 * odometry) << tracked << "° tracked, " << odometry << "° odometry";
   EXPECT_LT(tracked, 0.8);
+}
+
+// Issue 9: --reference compares with a per-scan reference file, paired by time or by index; a
+// pairing the file's stamps cannot support, or a pose count that is not the scan count, fails
+// before the run (exit 2, no output), naming the file and the way out.
+TEST(Suite, GridComparesWithAReferenceFileByTimeOrIndex) {
+  const std::string suite = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/suite/";
+  if (!fs::exists(suite + "freiburg-101.log.gz")) GTEST_SKIP() << "no suite";
+  const fs::path dir = FreshDir("suite_reference");
+  const std::string f101 = "grid --log " + suite + "freiburg-101.log.gz --reference " + suite +
+                           "freiburg-101.reference.txt --max-scans 40 --particles 5";
+  const auto by_time = RunCli(f101 + " --out " + (dir / "time").string());
+  ASSERT_EQ(by_time.exit_code, 0) << by_time.output;
+  const auto by_index = RunCli(f101 + " --pair-by index --out " + (dir / "index").string());
+  ASSERT_EQ(by_index.exit_code, 0) << by_index.output;
+  const auto t = nlohmann::json::parse(ReadText(dir / "time" / "metrics.json"));
+  const auto i = nlohmann::json::parse(ReadText(dir / "index" / "metrics.json"));
+  EXPECT_EQ(t["pair_by"], "time");
+  EXPECT_EQ(i["pair_by"], "index");
+  // The reference has one pose per scan at the scan's time, so both pairings agree.
+  EXPECT_DOUBLE_EQ(t["ate_rmse_m"].get<double>(), i["ate_rmse_m"].get<double>());
+  EXPECT_LT(t["ate_rmse_m"].get<double>(), 0.5);
+
+  // csail's stamps repeat (6 significant digits): by time is refused.
+  const auto csail = RunCli("grid --log " + suite + "csail.log.gz --reference " + suite +
+                            "csail.reference.txt --out " + (dir / "csail").string());
+  EXPECT_EQ(csail.exit_code, 2) << csail.output;
+  EXPECT_NE(csail.output.find("csail.reference.txt"), std::string::npos) << csail.output;
+  EXPECT_NE(csail.output.find("--pair-by index"), std::string::npos) << csail.output;
+  // Another log's reference by index: the pose count is not the scan count.
+  const auto wrong = RunCli("grid --log " + suite + "csail.log.gz --reference " + suite +
+                            "freiburg-101.reference.txt --pair-by index --out " +
+                            (dir / "wrong").string());
+  EXPECT_EQ(wrong.exit_code, 2) << wrong.output;
+  EXPECT_NE(wrong.output.find("292 poses for the 406 scans"), std::string::npos) << wrong.output;
+  EXPECT_FALSE(fs::exists(dir / "csail"));
+  EXPECT_FALSE(fs::exists(dir / "wrong"));
+}
+
+// Issue 9: csail-corrected's odometry fields hold the corrected poses; comparing with them must
+// say that it measures nothing.
+TEST(Suite, ReferenceFromLogWarnsWhenTheOdometryIsTheReference) {
+  const std::string carmen = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/";
+  if (!fs::exists(carmen + "csail-corrected.log.gz")) GTEST_SKIP() << "no csail-corrected";
+  const fs::path dir = FreshDir("suite_from_log");
+  const auto corrected = RunCli("grid --log " + carmen + "csail-corrected.log.gz --max-scans 20 "
+                                "--particles 3 --reference-from-log --out " +
+                                (dir / "c").string());
+  ASSERT_EQ(corrected.exit_code, 0) << corrected.output;
+  EXPECT_NE(corrected.output.find("measures nothing"), std::string::npos) << corrected.output;
+  // A log whose poses are not its odometry (here a constant offset of 5 cm): no warning.
+  {
+    std::ofstream log(dir / "distinct.clf");
+    for (int k = 0; k < 6; ++k) {
+      log << "FLASER 3 1.0 2.0 3.0 " << 0.1 * k + 0.05 << " 0 0 " << 0.1 * k << " 0 0 " << k
+          << " host " << k << "\n";
+    }
+  }
+  const auto distinct = RunCli("grid --log " + (dir / "distinct.clf").string() +
+                               " --particles 3 --reference-from-log --out " + (dir / "d").string());
+  ASSERT_EQ(distinct.exit_code, 0) << distinct.output;
+  EXPECT_EQ(distinct.output.find("measures nothing"), std::string::npos) << distinct.output;
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
 #include <vector>
 
 namespace slamkit {
@@ -49,9 +51,31 @@ TEST(Relations, CoveredKeepsOnlyRelationsWithBothPoses) {
   EXPECT_EQ(covered[1].t1_s, 2.0);
 }
 
-TEST(Relations, MissingPoseIsAnError) {
-  const std::vector<PoseRelation> relations = {{0.0, 1.5, Pose2()}};
-  EXPECT_THROW(EvaluateRelations(kEstimate, relations), std::invalid_argument);
+// Issue 9: a relation stamp between two scans is interpolated (it used to end the run with an
+// error after the filter had run); one outside the trajectory is skipped and counted.
+TEST(Relations, StampsBetweenPosesAreInterpolatedAndOutsideOnesSkipped) {
+  // At t = 1.5, halfway from (1, 0, 0) to (1, 1, π/2): (1, 0.5, π/4), by hand.
+  const std::vector<PoseRelation> relations = {{0.0, 1.5, Pose2(1, 0.5, M_PI / 4)},
+                                               {0.0, 2.5, Pose2()},
+                                               {-1.0, 1.0, Pose2()}};
+  const RelationErrorStats s = EvaluateRelations(kEstimate, relations);
+  EXPECT_EQ(s.count, 1);
+  EXPECT_EQ(s.skipped, 2);
+  EXPECT_NEAR(s.trans_mean_m, 0.0, 1e-12);
+  EXPECT_NEAR(s.rot_mean_deg, 0.0, 1e-9);
+}
+
+TEST(InterpolatePoseAt, MatchesHandComputedPosesAndTakesTheShorterArc) {
+  const Pose2 q = *InterpolatePoseAt(kEstimate, 1.25, 1e-3);
+  EXPECT_NEAR(q.x(), 1.0, 1e-12);
+  EXPECT_NEAR(q.y(), 0.25, 1e-12);
+  EXPECT_NEAR(q.theta(), M_PI / 8, 1e-12);
+  EXPECT_EQ(InterpolatePoseAt(kEstimate, 1.0004, 1e-3)->vector(), kEstimate[1].pose.vector());
+  EXPECT_FALSE(InterpolatePoseAt(kEstimate, 2.1, 1e-3));
+  EXPECT_FALSE(InterpolatePoseAt(kEstimate, -0.1, 1e-3));
+  // From 170° to -170°: through 180°, not through 0°.
+  const Trajectory wrap = {{0.0, Pose2(0, 0, 170 * M_PI / 180)}, {1.0, Pose2(0, 0, -170 * M_PI / 180)}};
+  EXPECT_NEAR(std::abs(InterpolatePoseAt(wrap, 0.5, 1e-3)->theta()), M_PI, 1e-12);
 }
 
 TEST(FindPoseAt, NearestWithinTolerance) {
@@ -98,6 +122,27 @@ TEST(CompareWithReference, PairsByIndexWhateverTheTimestamps) {
   EXPECT_EQ(c.ate.count, 5);
   EXPECT_GT(c.ate.rmse_m, 0.0);
   EXPECT_THROW(CompareWithReference(estimate, Trajectory(3)), std::invalid_argument);
+}
+
+TEST(CompareWithReference, PairsByTimeLeavingUnpairedPosesOut) {
+  Trajectory reference, estimate;
+  for (int i = 0; i < 6; ++i) reference.push_back({double(i), Pose2(i, 0, 0)});
+  // The estimate misses t = 2 and has an extra pose at 2.5 that nothing pairs with.
+  for (double t : {0.0, 1.0, 2.5, 3.0, 4.0, 5.0}) estimate.push_back({t, Pose2(t, 0, 0)});
+  const ReferenceComparison c = CompareWithReference(estimate, reference, PairBy::kTime);
+  EXPECT_EQ(c.ate.count, 5);
+  EXPECT_NEAR(c.ate.rmse_m, 0.0, 1e-9);
+  const Trajectory far = {{100.0, Pose2()}};
+  EXPECT_THROW(CompareWithReference(far, reference, PairBy::kTime), std::invalid_argument);
+  EXPECT_THROW(CompareWithReference(far, reference, PairBy::kIndex), std::invalid_argument);
+}
+
+TEST(TimestampProblem, RepeatedAndBackwardStampsAreNamed) {
+  EXPECT_EQ(TimestampProblem(kEstimate), "");
+  const Trajectory repeated = {{0.0, Pose2()}, {0.0, Pose2()}, {0.0, Pose2()}};
+  EXPECT_NE(TimestampProblem(repeated).find("2 of 3 timestamps repeat"), std::string::npos);
+  const Trajectory backwards = {{0.0, Pose2()}, {1.0, Pose2()}, {0.5, Pose2()}};
+  EXPECT_NE(TimestampProblem(backwards).find("1 go backwards"), std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
@@ -11,7 +13,8 @@ namespace slamkit {
 // Mean ± standard deviation (population) of the translational and absolute rotational errors of
 // the relations (Kümmerle et al., "On measuring the accuracy of SLAM algorithms", 2009).
 struct RelationErrorStats {
-  int count = 0;
+  int count = 0;    // relations scored
+  int skipped = 0;  // relations with a time before the first or after the last pose
   double trans_mean_m = 0.0;
   double trans_std_m = 0.0;
   double rot_mean_deg = 0.0;
@@ -20,8 +23,9 @@ struct RelationErrorStats {
 
 // For each relation, the estimated relative pose δ = x(t1)⁻¹ ⊕ x(t2) is compared with the
 // reference δ*: the error is δ*⁻¹ ⊕ δ, its translation norm and |rotation| are averaged. Poses are
-// looked up by timestamp (nearest within `time_tolerance_s`); a relation whose time has no pose
-// throws std::invalid_argument naming it. Poses need not be in time order.
+// looked up by timestamp (InterpolatePoseAt: the nearest within `time_tolerance_s`, else
+// interpolated between the poses either side); a relation with a time outside the trajectory is
+// skipped and counted. Poses need not be in time order.
 RelationErrorStats EvaluateRelations(const Trajectory& estimate,
                                      std::span<const PoseRelation> relations,
                                      double time_tolerance_s = 1e-3);
@@ -56,7 +60,31 @@ struct ReferenceComparison {
 ReferenceComparison CompareWithReference(const Trajectory& estimate, const Trajectory& reference,
                                          int step = 1);
 
-// Index of the pose nearest to `t_s` within the tolerance, or -1 (binary search).
+// Index of the pose nearest to `t_s` within the tolerance, or -1 (binary search on a trajectory
+// in time order).
 int FindPoseAt(const Trajectory& trajectory, double t_s, double time_tolerance_s);
+
+// The pose at `t_s` on a trajectory in time order: the nearest pose within `time_tolerance_s`,
+// else the interpolation between the poses either side (position linear in time, heading along
+// the shorter arc); nullopt before the first or after the last pose.
+std::optional<Pose2> InterpolatePoseAt(const Trajectory& trajectory, double t_s,
+                                       double time_tolerance_s);
+
+// How an estimate's poses are paired with a reference's.
+enum class PairBy {
+  kTime,   // nearest timestamp within a tolerance (unpaired poses are left out)
+  kIndex,  // pose i with pose i: the same scans in the same order, whatever the clock says
+};
+
+// CompareWithReference after pairing by `pair_by`. By time, each reference pose is paired with the
+// estimated pose nearest in time within `time_tolerance_s`; RPE is then over consecutive pairs.
+// Throws std::invalid_argument when nothing pairs, or by index when the sizes differ.
+ReferenceComparison CompareWithReference(const Trajectory& estimate, const Trajectory& reference,
+                                         PairBy pair_by, double time_tolerance_s = 1e-3);
+
+// Why `trajectory`'s timestamps cannot pair poses (repeated or decreasing times, beyond
+// `time_tolerance_s`), or "" when they can: a reference or log whose stamps fail this must be
+// paired by index.
+std::string TimestampProblem(const Trajectory& trajectory, double time_tolerance_s = 1e-3);
 
 }  // namespace slamkit
