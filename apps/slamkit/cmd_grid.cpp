@@ -9,11 +9,13 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "commands.hpp"
 #include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/runners/grid_run.hpp"
+#include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
@@ -32,6 +34,7 @@ struct GridOptions {
   bool reference_from_log = false;
   bool interpolate_odometry = false;
   int max_scans = 0;
+  int threads = 0;           // 0: the CPUs this process may use
   double max_range_m = 0.0;  // 0: from the log
   RbpfGridSlamParams params;
 };
@@ -73,19 +76,26 @@ std::optional<Trajectory> LoadReference(const GridOptions& o, const CarmenLog& l
 struct GridEvaluation {
   std::optional<RelationErrorStats> relations;
   std::optional<ReferenceComparison> reference;
+  // The same for the log's raw odometry: the baseline the estimate must beat.
+  std::optional<RelationErrorStats> odometry_relations;
+  std::optional<ReferenceComparison> odometry_reference;
   std::string error;
 };
 
 GridEvaluation Evaluate(const GridOptions& o, const GridRunResult& result,
-                        std::vector<PoseRelation> relations,
+                        const Trajectory& odometry, std::vector<PoseRelation> relations,
                         const std::optional<Trajectory>& reference) {
   GridEvaluation e;
   try {
     if (o.max_scans > 0) relations = RelationsCovered(result.trajectory, relations);
-    if (!relations.empty()) e.relations = EvaluateRelations(result.trajectory, relations);
+    if (!relations.empty()) {
+      e.relations = EvaluateRelations(result.trajectory, relations);
+      e.odometry_relations = EvaluateRelations(odometry, relations);
+    }
     if (reference) {
-      e.reference = CompareWithReference(result.trajectory, *reference,
-                                         o.reference_from_log ? PairBy::kIndex : o.pair_by);
+      const PairBy pair_by = o.reference_from_log ? PairBy::kIndex : o.pair_by;
+      e.reference = CompareWithReference(result.trajectory, *reference, pair_by);
+      e.odometry_reference = CompareWithReference(odometry, *reference, pair_by);
     }
   } catch (const std::exception& ex) {
     e.error = ex.what();
@@ -93,7 +103,23 @@ GridEvaluation Evaluate(const GridOptions& o, const GridRunResult& result,
   return e;
 }
 
+void AddOdometryMetrics(const GridEvaluation& e, nlohmann::json& metrics) {
+  if (e.odometry_relations) {
+    metrics["odometry_relations_trans_mean_m"] = e.odometry_relations->trans_mean_m;
+    metrics["odometry_relations_rot_mean_deg"] = e.odometry_relations->rot_mean_deg;
+  }
+  if (e.odometry_reference) {
+    metrics["odometry_ate_rmse_m"] = e.odometry_reference->ate.rmse_m;
+    metrics["odometry_rpe_trans_mean_m"] = e.odometry_reference->rpe.trans_mean_m;
+    metrics["odometry_rpe_rot_mean_deg"] = e.odometry_reference->rpe.rot_mean_deg;
+  }
+}
+
 int RunGridCommand(const GridOptions& o) {
+  // Every parallel loop of the filter runs in TBB's pool, which this caps.
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(o.threads > 0 ? o.threads
+                                                                           : UsableCpuCount()));
   CarmenReadOptions read_options;
   read_options.skip_bad_lines = o.skip_bad_lines;
   read_options.odometry_from_scan_fields = !o.interpolate_odometry;
@@ -111,7 +137,8 @@ int RunGridCommand(const GridOptions& o) {
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
   const GridRunResult result =
       RunGridSlam(log, o.params, [progress](int done, int) { progress->Update(done); });
-  const GridEvaluation eval = Evaluate(o, result, std::move(relations), reference);
+  const GridEvaluation eval =
+      Evaluate(o, result, OdometryTrajectory(log), std::move(relations), reference);
 
   const std::filesystem::path& dir = output.staging();
   WriteGridOutputs(dir, result);
@@ -121,6 +148,7 @@ int RunGridCommand(const GridOptions& o) {
     metrics["reference"] = o.reference;
     metrics["pair_by"] = o.pair_by == PairBy::kIndex ? "index" : "time";
   }
+  AddOdometryMetrics(eval, metrics);
   if (!eval.error.empty()) metrics["evaluation_error"] = eval.error;
   WriteJson(dir / "metrics.json", metrics);
 
@@ -164,6 +192,8 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
                   "largest |x| or |y| the map may reach [m]")->check(CLI::PositiveNumber);
   cmd->add_option("--max-map-cells", o->params.grid.max_cells,
                   "largest map area in cells (1 byte each)")->check(CLI::PositiveNumber);
+  cmd->add_option("--threads", o->threads, "worker threads (0: all the CPUs this process may use)")
+      ->check(CLI::Range(0, 1024));
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");
   cmd->add_option("--max-scans", o->max_scans, "use only the first N scans (0: all)")
       ->check(NonNegativeNumber());

@@ -11,5 +11,6 @@ void RegisterDemo(CLI::App& app, int& exit_code);
 void RegisterRun(CLI::App& app, int& exit_code);
 void RegisterGrid(CLI::App& app, int& exit_code);
 void RegisterGridSim(CLI::App& app, int& exit_code);
+void RegisterSuite(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -37,6 +37,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterRun(app, exit_code);
   slamkit::app::RegisterGrid(app, exit_code);
   slamkit::app::RegisterGridSim(app, exit_code);
+  slamkit::app::RegisterSuite(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

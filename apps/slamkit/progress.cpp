@@ -46,7 +46,9 @@ void Progress::Update(int done) noexcept {
     std::string timing = fmt::format(", {} elapsed", FormatDuration(elapsed_s));
     if (elapsed_s >= kMinRateTimeS && done > 0) {
       const double rate = done / elapsed_s;
-      timing += fmt::format(", {:.0f} {}/s", rate, label_);
+      // Slow items (whole runs) keep two significant digits rather than showing "0 runs/s".
+      timing += rate >= 10.0 ? fmt::format(", {:.0f} {}/s", rate, label_)
+                             : fmt::format(", {:.2g} {}/s", rate, label_);
       if (done < total_) timing += fmt::format(", ETA {}", FormatDuration((total_ - done) / rate));
     }
     if (tty_) {

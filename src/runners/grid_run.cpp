@@ -87,6 +87,13 @@ Trajectory LoggedTrajectory(const CarmenLog& log) {
   return out;
 }
 
+Trajectory OdometryTrajectory(const CarmenLog& log) {
+  Trajectory out;
+  out.reserve(log.scans.size());
+  for (const LaserScan& scan : log.scans) out.push_back({scan.t_s, scan.odometry});
+  return out;
+}
+
 double PeakRssMib() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

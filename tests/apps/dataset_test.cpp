@@ -140,5 +140,64 @@ TEST(Suite, ReferenceFromLogWarnsWhenTheOdometryIsTheReference) {
   EXPECT_EQ(distinct.output.find("measures nothing"), std::string::npos) << distinct.output;
 }
 
+// Issue 9: `slamkit suite` runs every log of a manifest for every seed and summarises them; a run
+// that fails is recorded as failed (exit 1 overall) without stopping the others.
+TEST(Suite, RunsEveryLogAndSeedAndRecordsAFailedRun) {
+  const std::string suite = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/suite/";
+  if (!fs::exists(suite + "freiburg-101.log.gz")) GTEST_SKIP() << "no suite";
+  const fs::path dir = FreshDir("suite_run");
+  std::ofstream(dir / "broken.clf") << "ODOM 0 0 0 0 0 0 1.0 host 0\n";  // no scan at all
+  std::ofstream(dir / "suite.yaml")
+      << "root: " << suite << "\nlogs:\n"
+      << "  - {name: f101, log: freiburg-101.log.gz, reference: freiburg-101.reference.txt}\n"
+      << "  - {name: csail, log: csail.log.gz, reference: csail.reference.txt, pair_by: index}\n"
+      << "  - {name: broken, log: " << (dir / "broken.clf").string() << "}\n";
+  const auto r = RunCli("suite --manifest " + (dir / "suite.yaml").string() +
+                        " --seeds 1-2 --max-scans 25 --particles 3 --out " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("6 runs (3 logs x 2 seeds), 2 failed"), std::string::npos) << r.output;
+  const auto summary = nlohmann::json::parse(ReadText(dir / "out" / "summary.json"));
+  ASSERT_EQ(summary["runs"].size(), 6u);
+  for (const auto& run : summary["runs"]) {
+    const bool broken = run["log"] == "broken";
+    EXPECT_EQ(run["status"], broken ? "failed" : "ok") << run.dump();
+    if (broken) {
+      EXPECT_EQ(run["exit_code"], 2);
+      EXPECT_NE(run["failure"].get<std::string>().find("no laser scan"), std::string::npos);
+    } else {
+      EXPECT_EQ(run["metrics"]["scans"], 25);
+      EXPECT_GT(run["metrics"]["ate_rmse_m"].get<double>(), 0.0);
+      EXPECT_GT(run["metrics"]["odometry_ate_rmse_m"].get<double>(), 0.0);
+      EXPECT_GT(run["peak_rss_mib"].get<double>(), 1.0);
+    }
+  }
+  EXPECT_EQ(summary["logs"][0]["completed"], 2);
+  EXPECT_EQ(summary["logs"][2]["failed"], 2);
+  const std::string csv = ReadText(dir / "out" / "summary.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7);  // header and 6 runs
+  EXPECT_NE(ReadText(dir / "out" / "summary.md").find("| csail | 2 |"), std::string::npos);
+  for (const char* seed : {"seed_1", "seed_2"}) {
+    EXPECT_TRUE(fs::exists(dir / "out" / "runs" / "f101" / seed / "map.pgm")) << seed;
+  }
+}
+
+TEST(Suite, BadSeedsAndManifestsExitTwoBeforeAnyRun) {
+  const fs::path dir = FreshDir("suite_bad");
+  std::ofstream(dir / "suite.yaml") << "logs:\n  - {name: a, log: nowhere.clf}\n";
+  const auto missing = RunCli("suite --manifest " + (dir / "suite.yaml").string() + " --out " +
+                              (dir / "out").string());
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("suite.yaml:2: key 'logs[0].log': no such file"),
+            std::string::npos) << missing.output;
+  const std::string manifest = std::string(SLAMKIT_SOURCE_DIR) + "/configs/carmen_suite.yaml";
+  for (const char* seeds : {"5-1", "x", "1-", "-3", "1,,2", "1-5000"}) {
+    const auto r = RunCli("suite --manifest " + manifest + " --seeds=" + seeds + " --out " +
+                          (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << seeds << ": " << r.output;
+    EXPECT_NE(r.output.find("expected seeds such as 1-5"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out"));
+}
+
 }  // namespace
 }  // namespace slamkit

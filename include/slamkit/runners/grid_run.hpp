@@ -32,6 +32,8 @@ nlohmann::json GridMetrics(const GridRunResult& result, const RbpfGridSlamParams
 
 // The poses a log gives with its scans (corrected in *-corrected logs), one per scan.
 Trajectory LoggedTrajectory(const CarmenLog& log);
+// The raw odometry at each scan: the baseline every estimate must beat.
+Trajectory OdometryTrajectory(const CarmenLog& log);
 
 // Peak resident memory of this process so far, in MiB.
 double PeakRssMib();

@@ -1,0 +1,243 @@
+// `slamkit suite`: the grid filter on every log of a manifest and every seed, each run a
+// `slamkit grid` child process (so that each has its own peak memory, and a run that fails or
+// crashes costs only itself), as many at once as --jobs; then the summary and the contact sheet.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "grid_common.hpp"
+#include "progress.hpp"
+#include "slamkit/core/cpu.hpp"
+#include "slamkit/io/error.hpp"
+#include "slamkit/runners/suite_manifest.hpp"
+#include "slamkit/runners/suite_summary.hpp"
+
+extern char** environ;
+
+namespace slamkit::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SuiteOptions {
+  std::string manifest;
+  std::string root;
+  std::string seeds = "1";
+  int particles = 0;  // 0: the grid command's default
+  int max_scans = 0;
+  int jobs = 0;       // 0: UsableCpuCount
+  std::string out;
+};
+
+// "1-5", "1,3,7" or "2" as the list of seeds.
+std::vector<std::uint64_t> ParseSeeds(const std::string& text) {
+  std::vector<std::uint64_t> seeds;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    const std::size_t dash = part.find('-');
+    try {
+      std::size_t used = 0;
+      const std::uint64_t lo = std::stoull(part.substr(0, dash), &used);
+      if (used != part.substr(0, dash).size() || part[0] == '-') throw std::invalid_argument("");
+      std::uint64_t hi = lo;
+      if (dash != std::string::npos) {
+        const std::string rest = part.substr(dash + 1);
+        hi = std::stoull(rest, &used);
+        if (used != rest.size() || rest.empty() || rest[0] == '-') throw std::invalid_argument("");
+      }
+      if (hi < lo || hi - lo >= 1000) throw std::invalid_argument("");
+      for (std::uint64_t s = lo; s <= hi; ++s) seeds.push_back(s);
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("--seeds '{}': expected seeds such as 1-5 or 1,3,7 (a range "
+                                   "of at most 1000)",
+                                   text));
+    }
+    start = comma + 1;
+  }
+  return seeds;
+}
+
+struct SuiteJob {
+  const SuiteLog* log = nullptr;
+  std::uint64_t seed = 0;
+  fs::path out;       // the run's --out
+  fs::path console;   // its stdout and stderr
+  std::vector<std::string> args;
+};
+
+// The child's command line; `threads` of it, so that the runs at once share the CPUs.
+std::vector<std::string> GridArgs(const SuiteOptions& o, const SuiteLog& log, std::uint64_t seed,
+                                  const fs::path& out, int threads) {
+  std::vector<std::string> a = {"slamkit", "grid", "--log", log.log.string(), "--seed",
+                                std::to_string(seed), "--threads", std::to_string(threads),
+                                "--out", out.string()};
+  if (o.particles > 0) a.insert(a.end(), {"--particles", std::to_string(o.particles)});
+  if (o.max_scans > 0) a.insert(a.end(), {"--max-scans", std::to_string(o.max_scans)});
+  if (!log.relations.empty()) a.insert(a.end(), {"--relations", log.relations.string()});
+  if (!log.reference.empty()) {
+    a.insert(a.end(), {"--reference", log.reference.string(), "--pair-by",
+                       log.pair_by == PairBy::kIndex ? "index" : "time"});
+  }
+  if (log.reference_from_log) a.push_back("--reference-from-log");
+  return a;
+}
+
+// Starts `job` as a child running this executable; its output goes to job.console.
+pid_t Spawn(const SuiteJob& job) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, job.console.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<char*> argv;
+  for (const std::string& a : job.args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error(fmt::format("cannot start a grid run: {}", std::strerror(rc)));
+  return pid;
+}
+
+// The last line of the run's console output that says "error" (what a failed run reported).
+std::string FailureOf(const SuiteJob& job, int status) {
+  std::ifstream in(job.console);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    if (line.find("error") != std::string::npos) last = line;
+  }
+  const std::string how = WIFSIGNALED(status) ? fmt::format("killed by signal {}", WTERMSIG(status))
+                                              : fmt::format("exit {}", WEXITSTATUS(status));
+  return last.empty() ? how : fmt::format("{}: {}", how, last);
+}
+
+SuiteRunRecord Record(const SuiteJob& job, int status, const rusage& usage, double wall_s) {
+  SuiteRunRecord r;
+  r.log = job.log->name;
+  r.seed = job.seed;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.wall_time_s = wall_s;
+  r.peak_rss_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: KiB
+  std::ifstream metrics(job.out / "metrics.json");
+  if (metrics) r.metrics = nlohmann::json::parse(metrics, nullptr, /*allow_exceptions=*/false);
+  if (r.exit_code != 0 || !r.metrics.is_object()) r.failure = FailureOf(job, status);
+  return r;
+}
+
+// Biggest log first (its file size as the measure), so that the longest run does not start
+// last and leave the other CPUs idle while it finishes.
+std::vector<std::size_t> StartOrder(const std::vector<SuiteJob>& all) {
+  std::vector<std::uintmax_t> size(all.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    std::error_code ec;
+    size[i] = fs::file_size(all[i].log->log, ec);
+  }
+  std::vector<std::size_t> order(all.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return size[a] > size[b]; });
+  return order;
+}
+
+// Runs every job, `jobs` at a time, biggest first; records in the jobs' order.
+std::vector<SuiteRunRecord> RunJobs(const std::vector<SuiteJob>& all, int jobs) {
+  using Clock = std::chrono::steady_clock;
+  const std::vector<std::size_t> order = StartOrder(all);
+  std::vector<SuiteRunRecord> records(all.size());
+  std::map<pid_t, std::pair<std::size_t, Clock::time_point>> running;
+  Progress progress("runs", static_cast<int>(all.size()));
+  std::size_t next = 0;
+  int done = 0;
+  while (next < all.size() || !running.empty()) {
+    while (next < all.size() && static_cast<int>(running.size()) < jobs) {
+      running[Spawn(all[order[next]])] = {order[next], Clock::now()};
+      ++next;
+    }
+    int status = 0;
+    rusage usage{};
+    const pid_t pid = wait4(-1, &status, 0, &usage);
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(fmt::format("waiting for a grid run: {}", std::strerror(errno)));
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const auto [index, start] = it->second;
+    running.erase(it);
+    records[index] = Record(all[index], status, usage,
+                            std::chrono::duration<double>(Clock::now() - start).count());
+    progress.Update(++done);
+  }
+  return records;
+}
+
+int RunSuiteCommand(const SuiteOptions& o) {
+  const SuiteManifest manifest = LoadSuiteManifest(o.manifest, o.root);
+  const std::vector<std::uint64_t> seeds = ParseSeeds(o.seeds);
+  OutputDir output(o.out);
+  const fs::path& dir = output.staging();
+  const int parallel = o.jobs > 0 ? o.jobs : UsableCpuCount();
+  const int threads = std::max(1, UsableCpuCount() / parallel);
+  std::vector<SuiteJob> jobs;
+  for (const SuiteLog& log : manifest.logs) {
+    fs::create_directories(dir / "runs" / log.name);
+    for (std::uint64_t seed : seeds) {
+      SuiteJob job{&log, seed, dir / "runs" / log.name / fmt::format("seed_{}", seed),
+                   dir / "runs" / log.name / fmt::format("seed_{}.txt", seed), {}};
+      job.args = GridArgs(o, log, seed, job.out, threads);
+      jobs.push_back(std::move(job));
+    }
+  }
+  const std::vector<SuiteRunRecord> records = RunJobs(jobs, parallel);
+  WriteSuiteSummary(dir, fmt::format("slamkit suite: {}", o.manifest), records);
+  output.Commit();
+  int failed = 0;
+  for (const SuiteRunRecord& r : records) failed += r.failure.empty() ? 0 : 1;
+  fmt::print("{} runs ({} logs x {} seeds), {} failed\nwrote {}\n", records.size(),
+             manifest.logs.size(), seeds.size(), failed, o.out);
+  return failed > 0 ? 1 : 0;
+}
+
+}  // namespace
+
+void RegisterSuite(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<SuiteOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "suite", "the grid filter on every log of a suite manifest and every seed, with a summary");
+  cmd->add_option("--manifest", o->manifest, "suite manifest (configs/carmen_suite.yaml)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", o->out, "output directory")->required();
+  cmd->add_option("--seeds", o->seeds, "seeds: 1-5, 1,3,7 or 2")->capture_default_str();
+  cmd->add_option("--particles", o->particles, "particles (default: the grid command's)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--max-scans", o->max_scans, "use only each log's first N scans (0: all)")
+      ->check(NonNegativeNumber());
+  cmd->add_option("--jobs", o->jobs, "runs at once (0: the CPUs this process may use)")
+      ->check(CLI::Range(0, 1024));
+  cmd->add_option("--root", o->root, "the folder the manifest's paths are relative to "
+                                     "(default: the manifest's `root`)")
+      ->check(CLI::ExistingDirectory);
+  cmd->callback([o, &exit_code] { exit_code = RunSuiteCommand(*o); });
+}
+
+}  // namespace slamkit::app
