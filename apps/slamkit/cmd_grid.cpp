@@ -35,6 +35,7 @@ struct GridOptions {
   bool interpolate_odometry = false;
   int max_scans = 0;
   int threads = 0;           // 0: the CPUs this process may use
+  bool frame_odometry = false;  // keep the log's odometry frame instead of starting at the origin
   double max_range_m = 0.0;  // 0: from the log
   RbpfGridSlamParams params;
 };
@@ -134,15 +135,28 @@ int RunGridCommand(const GridOptions& o) {
   const std::optional<Trajectory> reference = LoadReference(o, log);
   OutputDir output(o.out);
 
+  RbpfGridSlamParams params = o.params;
+  Trajectory odometry = OdometryTrajectory(log);
+  if (o.frame_odometry) {
+    params.initial_pose = odometry.front().pose;
+  } else {
+    const Pose2 to_origin = odometry.front().pose.Inverse();
+    for (StampedPose& p : odometry) p.pose = to_origin.Compose(p.pose);
+  }
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
   const GridRunResult result =
-      RunGridSlam(log, o.params, [progress](int done, int) { progress->Update(done); });
-  const GridEvaluation eval =
-      Evaluate(o, result, OdometryTrajectory(log), std::move(relations), reference);
+      RunGridSlam(log, params, [progress](int done, int) { progress->Update(done); });
+  const GridEvaluation eval = Evaluate(o, result, odometry, std::move(relations), reference);
 
   const std::filesystem::path& dir = output.staging();
-  WriteGridOutputs(dir, result);
-  nlohmann::json metrics = GridMetrics(result, o.params, eval.relations ? &*eval.relations : nullptr,
+  const int moved = WriteGridOutputs(dir, result, odometry);
+  if (moved > 0) {
+    PrintStderr("warning: {}: its scan timestamps cannot pair poses ({}): pair by index; "
+                "trajectory.tum's {} such times were pushed forward in 1 µs steps for TUM "
+                "readers, trajectory.txt keeps the log's\n",
+                o.log, TimestampProblem(result.trajectory), moved);
+  }
+  nlohmann::json metrics = GridMetrics(result, params, eval.relations ? &*eval.relations : nullptr,
                                        eval.reference ? &*eval.reference : nullptr, PeakRssMib());
   if (!o.reference.empty()) {
     metrics["reference"] = o.reference;
@@ -192,6 +206,11 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
                   "largest |x| or |y| the map may reach [m]")->check(CLI::PositiveNumber);
   cmd->add_option("--max-map-cells", o->params.grid.max_cells,
                   "largest map area in cells (1 byte each)")->check(CLI::PositiveNumber);
+  cmd->add_option("--frame", o->frame_odometry,
+                  "origin: the first scan at (0, 0, 0); odometry: the log's odometry frame")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, bool>{{"origin", false},
+                                                                      {"odometry", true}}))
+      ->default_str("origin");
   cmd->add_option("--threads", o->threads, "worker threads (0: all the CPUs this process may use)")
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "skip malformed log lines (counted)");

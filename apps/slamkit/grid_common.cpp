@@ -185,12 +185,16 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
       ->capture_default_str()->check(NonNegativeNumber());
 }
 
-void WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result) {
+int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result,
+                     const Trajectory& odometry) {
   std::filesystem::create_directories(dir);
   WritePoseText(dir / "trajectory.txt", result.trajectory);
-  WriteTumTrajectory(dir / "trajectory.tum", result.trajectory);
+  int moved = 0;
+  WriteTumTrajectory(dir / "trajectory.tum", WithIncreasingTimes(result.trajectory, 1e-6, &moved));
+  if (!odometry.empty()) WriteTumTrajectory(dir / "odometry.tum", WithIncreasingTimes(odometry));
   WriteOccupancyGridPgm(dir / "map.pgm", result.map);
   WriteOccupancyGridPng(dir / "map.png", result.map);
+  return moved;
 }
 
 void PrintGridRun(const std::string& source, const GridRunResult& result, int particles) {

@@ -176,6 +176,20 @@ ReferenceComparison CompareWithReference(const Trajectory& estimate, const Traje
   return CompareWithReference(paired_estimate, paired_reference);
 }
 
+Trajectory WithIncreasingTimes(const Trajectory& trajectory, double min_step_s, int* moved) {
+  Trajectory out = trajectory;
+  int count = 0;
+  for (std::size_t i = 1; i < out.size(); ++i) {
+    const double earliest = out[i - 1].t_s + min_step_s;
+    if (out[i].t_s < earliest) {
+      out[i].t_s = earliest;
+      ++count;
+    }
+  }
+  if (moved != nullptr) *moved = count;
+  return out;
+}
+
 std::string TimestampProblem(const Trajectory& trajectory, double time_tolerance_s) {
   int repeated = 0, backwards = 0;
   for (std::size_t i = 1; i < trajectory.size(); ++i) {

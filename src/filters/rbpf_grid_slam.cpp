@@ -19,6 +19,7 @@ RbpfGridSlam::~RbpfGridSlam() = default;
 
 void RbpfGridSlam::Initialise(const LaserScan& scan) {
   GridParticle first;
+  first.pose = params_.initial_pose;
   first.map = OccupancyGrid(params_.grid);
   InsertScan(first.map, first.pose.Compose(scan.laser_offset), scan,
              {.usable_range_m = params_.usable_range_m});

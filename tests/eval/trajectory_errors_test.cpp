@@ -145,5 +145,24 @@ TEST(TimestampProblem, RepeatedAndBackwardStampsAreNamed) {
   EXPECT_NE(TimestampProblem(backwards).find("1 go backwards"), std::string::npos);
 }
 
+// Issue 9: evo rejects a TUM file whose times do not increase (Intel's jitter, CSAIL's repeats).
+TEST(WithIncreasingTimes, PushesRepeatsAndStepsBackForwardAndKeepsTheRest) {
+  const Trajectory t = {{10.0, Pose2(1, 0, 0)}, {10.0, Pose2()}, {9.5, Pose2()},
+                        {11.0, Pose2()}, {11.0, Pose2()}};
+  int moved = 0;
+  const Trajectory out = WithIncreasingTimes(t, 1e-3, &moved);
+  EXPECT_EQ(moved, 3);
+  const std::vector<double> expected = {10.0, 10.001, 10.002, 11.0, 11.001};
+  ASSERT_EQ(out.size(), expected.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    EXPECT_NEAR(out[i].t_s, expected[i], 1e-12) << i;
+    if (i > 0) {
+      EXPECT_GT(out[i].t_s, out[i - 1].t_s) << i;
+    }
+  }
+  EXPECT_EQ(out[0].pose.vector(), t[0].pose.vector());
+  EXPECT_EQ(TimestampProblem(out, 1e-4), "");
+}
+
 }  // namespace
 }  // namespace slamkit

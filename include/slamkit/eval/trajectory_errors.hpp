@@ -87,4 +87,11 @@ ReferenceComparison CompareWithReference(const Trajectory& estimate, const Traje
 // paired by index.
 std::string TimestampProblem(const Trajectory& trajectory, double time_tolerance_s = 1e-3);
 
+// `trajectory` with strictly increasing times, as TUM readers (evo) require: each time that is
+// not at least `min_step_s` after the previous (written) one becomes that one + `min_step_s`, so
+// good stretches keep their stamps and a jitter or a run of equal stamps is pushed forward by
+// microseconds. `moved` (optional) counts the poses whose time changed.
+Trajectory WithIncreasingTimes(const Trajectory& trajectory, double min_step_s = 1e-6,
+                               int* moved = nullptr);
+
 }  // namespace slamkit

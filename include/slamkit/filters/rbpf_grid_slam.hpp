@@ -113,6 +113,9 @@ struct RbpfGridSlamParams {
   double tracking_max_correction_m = 0.1;
   double tracking_max_correction_rad = 0.1;
   OccupancyGridParams grid;
+  // The pose of the first scan: the map and the trajectory are in this frame (the origin by
+  // default; the log's first odometry pose keeps the log's frame).
+  Pose2 initial_pose;
 };
 
 // One particle of RbpfGridSlam.
