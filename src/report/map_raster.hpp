@@ -4,6 +4,7 @@
 // reads them, cropped to the known area and merged into blocks, so that MathGL gets a few hundred
 // blocks per side whatever the size of the map. Private to the report module.
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

@@ -1,7 +1,10 @@
 // The contact sheet of occupancy-grid maps: one small panel per run, so a broken map stands out.
 
+#include "slamkit/report/figures.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -11,7 +14,6 @@
 
 #include "map_raster.hpp"
 #include "mgl_canvas.hpp"
-#include "slamkit/report/figures.hpp"
 
 namespace slamkit {
 namespace {

@@ -26,7 +26,7 @@ bool IsBlue(const std::uint8_t* p) { return p[2] > 180 && p[0] < 90 && p[1] < 90
 bool IsRed(const std::uint8_t* p) { return p[0] > 180 && p[1] < 90 && p[2] < 90; }
 bool IsDark(const std::uint8_t* p) { return p[0] < 90 && p[1] < 90 && p[2] < 90; }
 bool IsUnknownGrey(const std::uint8_t* p) {  // the unknown fill, 0xBE
-  return std::abs(p[0] - 0xBE) < 8 && p[0] == p[1] && p[1] == p[2];
+  return std::abs(p[0] - 0xBE) < 3 && p[0] == p[1] && p[1] == p[2];
 }
 
 // Pixels of `is` in columns [x0, x1) and rows [y0, y1).
@@ -121,9 +121,9 @@ TEST_F(MapSheet, FailedPanelShowsNoMapBesideADrawnOne) {
   const RgbaImage image = ReadRgbaPng(dir_ / "sheet.png");
   ASSERT_EQ(image.width, 2 * 400);
   ASSERT_EQ(image.height, 2 * 400);
-  EXPECT_GT(Count(image, IsUnknownGrey, 0, 400, 0, 400), 1000);
+  EXPECT_GT(Count(image, IsUnknownGrey, 0, 400, 0, 400), 5000);
   for (const Window& w : {Window{400, 800, 0, 400}, Window{0, 400, 400, 800}}) {
-    EXPECT_EQ(Count(image, IsUnknownGrey, w.x0, w.x1, w.y0, w.y1), 0);
+    EXPECT_LT(Count(image, IsUnknownGrey, w.x0, w.x1, w.y0, w.y1), 100);  // anti-aliased text
     EXPECT_GT(Count(image, IsRed, w.x0, w.x1, w.y0, w.y1), 30);  // "no map"
     EXPECT_GT(Count(image, IsDark, w.x0, w.x1, w.y0, w.y1), 300);  // frame and title
   }
@@ -141,12 +141,11 @@ TEST_F(MapSheet, PathAlongAWallLandsOnTheWall) {
   const RgbaImage horizontal = ReadRgbaPng(dir_ / "horizontal.png");
   ASSERT_EQ(map.width, 400);
   const Window inner{20, 380, 40, 380};  // inside the frame, below the title
-  const Window on_path{20, 380, 40, 380};
-  const double path_x = MeanPosition(vertical, IsBlue, on_path, true);
-  const double path_y = MeanPosition(horizontal, IsBlue, on_path, false);
+  const double path_x = MeanPosition(vertical, IsBlue, inner, true);
+  const double path_y = MeanPosition(horizontal, IsBlue, inner, false);
   // The wall pixels in the rows (columns) the segment covers, away from the frame.
-  const int y = static_cast<int>(MeanPosition(vertical, IsBlue, on_path, false));
-  const int x = static_cast<int>(MeanPosition(horizontal, IsBlue, on_path, true));
+  const int y = static_cast<int>(MeanPosition(vertical, IsBlue, inner, false));
+  const int x = static_cast<int>(MeanPosition(horizontal, IsBlue, inner, true));
   const double wall_x = MeanPosition(map, IsDark, {inner.x0, inner.x1, y - 10, y + 10}, true);
   const double wall_y = MeanPosition(map, IsDark, {x - 10, x + 10, inner.y0, inner.y1}, false);
   EXPECT_NEAR(path_x, wall_x, 1.5);
