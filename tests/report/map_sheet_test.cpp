@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -153,6 +154,26 @@ TEST_F(MapSheet, PathAlongAWallLandsOnTheWall) {
   // The segments cover the walls: no wall pixel is left beside them.
   EXPECT_EQ(Count(vertical, IsDark, inner.x0, inner.x1, y - 10, y + 10), 0);
   EXPECT_EQ(Count(horizontal, IsDark, x - 10, x + 10, inner.y0, inner.y1), 0);
+}
+
+// Equal scale: the 10 m × 6 m of known cells keep their shape whatever the panel's box.
+TEST_F(MapSheet, KnownAreaKeepsItsAspectRatio) {
+  WriteMapContactSheet(dir_ / "map.png", OnePanel(RoomThroughIo(dir_), {}));
+  const RgbaImage image = ReadRgbaPng(dir_ / "map.png");
+  int x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
+  for (int y = 40; y < image.height; ++y) {  // below the title
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = image.At(x, y);
+      if (!(p[0] > 0xF0 && p[0] < 0xFF && p[0] == p[1] && p[1] == p[2])) continue;  // free fill
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
+  }
+  ASSERT_GT(x1, x0);
+  EXPECT_NEAR(static_cast<double>(x1 - x0 + 1) / (y1 - y0 + 1), 10.0 / 6.0, 0.03);
+  EXPECT_GT(x1 - x0, 300);  // the map fills most of the 400-px panel
 }
 
 TEST_F(MapSheet, HugeMapKeepsAOneCellWall) {
