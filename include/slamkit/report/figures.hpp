@@ -7,8 +7,9 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/core/landmark_world.hpp"
+#include "slamkit/maps/landmark_map.hpp"
+#include "slamkit/maps/occupancy_image.hpp"
 
 namespace slamkit {
 
@@ -47,6 +48,34 @@ struct ConsistencyFigureData {
 // Each series is either empty (not drawn) or as long as `t_s`, else std::invalid_argument.
 // Formats and failures as for WritePathFigure.
 void WriteConsistencyFigure(const std::filesystem::path& path, const ConsistencyFigureData& data);
+
+// One run on a contact sheet of occupancy-grid maps (WriteMapContactSheet).
+struct MapSheetPanel {
+  std::string title;          // e.g. "edmonton, seed 3: ATE 0.91 m"
+  OccupancyImage map;         // as ReadOccupancyImage returns it (dark = occupied)
+  Trajectory path;            // the estimated path, world frame, drawn over the map
+  Trajectory secondary_path;  // drawn dimmer (e.g. raw odometry); empty: not drawn
+  bool failed = false;        // a run that produced no map: the title and "no map" only
+};
+
+struct MapSheetData {
+  std::string title;
+  std::vector<MapSheetPanel> panels;
+  int columns = 0;       // 0: about square, ceil(sqrt(panel count))
+  int panel_px = 400;    // side of each panel in pixels
+};
+
+// A grid of panels, one per run, so that a broken map stands out: each map in grey (occupied
+// dark, free light, unknown mid grey; pixels read as map_server does with its default
+// thresholds), cropped to its known area and the path plus a margin, at equal scale on both
+// axes, with the paths over it, a scale bar and the title above. A panel that is failed or has
+// an empty map shows "no map". Large maps are merged into blocks of pixels first (a block is
+// occupied if any of its pixels is, else free if any is), about one block per output pixel.
+// The image is columns × panel_px wide and rows × panel_px high plus a title band when `title`
+// is not empty. Throws std::invalid_argument when there is no panel, panel_px < 50, columns < 0
+// or a map's pixels, resolution or origin are inconsistent; formats and failures as for
+// WritePathFigure.
+void WriteMapContactSheet(const std::filesystem::path& path, const MapSheetData& data);
 
 // `points` points on the `sigma`-sigma contour of N(mean, cov), {mean + sigma L u : |u| = 1} with
 // L Lᵀ = cov, evenly spaced in the angle of u; the first lies on the positive major semi-axis.
