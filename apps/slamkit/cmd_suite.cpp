@@ -1,6 +1,7 @@
 // `slamkit suite`: the grid filter on every log of a manifest and every seed, each run a
 // `slamkit grid` child process (so that each has its own peak memory, and a run that fails or
-// crashes costs only itself), as many at once as --jobs; then the summary and the contact sheet.
+// crashes costs only itself), as many at once as --jobs; then the summary and maps.png, the
+// contact sheet of every run's map.
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -26,6 +27,9 @@
 #include "progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/map_reader.hpp"
+#include "slamkit/io/trajectory_reader.hpp"
+#include "slamkit/report/figures.hpp"
 #include "slamkit/runners/suite_manifest.hpp"
 #include "slamkit/runners/suite_summary.hpp"
 
@@ -190,6 +194,41 @@ std::vector<SuiteRunRecord> RunJobs(const std::vector<SuiteJob>& all, int jobs) 
   return records;
 }
 
+// The panel of one run: its map and path, titled with its headline figure; a run whose outputs
+// are missing or unreadable is a failed panel.
+MapSheetPanel PanelOf(const SuiteRunRecord& r, const fs::path& run_dir) {
+  MapSheetPanel panel;
+  std::string figure;
+  if (r.metrics.is_object() && r.metrics.contains("ate_rmse_m")) {
+    figure = fmt::format(": ATE {:.3f} m", r.metrics["ate_rmse_m"].get<double>());
+  } else if (r.metrics.is_object() && r.metrics.contains("relations_trans_mean_m")) {
+    figure = fmt::format(": relations {:.3f} m", r.metrics["relations_trans_mean_m"].get<double>());
+  }
+  panel.title = fmt::format("{} seed {}{}", r.log, r.seed, r.failure.empty() ? figure : ": failed");
+  panel.failed = !r.failure.empty();
+  if (panel.failed) return panel;
+  try {
+    panel.map = ReadOccupancyImage(run_dir / "map.yaml");
+    panel.path = ReadTrajectory(run_dir / "trajectory.tum");
+    panel.secondary_path = ReadTrajectory(run_dir / "odometry.tum");
+  } catch (const std::exception&) {
+    panel.failed = true;
+  }
+  return panel;
+}
+
+// DIR/maps.png: every run's map with its path (and, dimmer, the raw odometry), so that a broken
+// map is seen at a glance.
+void WriteContactSheet(const fs::path& dir, const std::vector<SuiteJob>& jobs,
+                       const std::vector<SuiteRunRecord>& records, const std::string& title) {
+  MapSheetData sheet;
+  sheet.title = title;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    sheet.panels.push_back(PanelOf(records[i], jobs[i].out));
+  }
+  WriteMapContactSheet(dir / "maps.png", sheet);
+}
+
 int RunSuiteCommand(const SuiteOptions& o) {
   const SuiteManifest manifest = LoadSuiteManifest(o.manifest, o.root);
   const std::vector<std::uint64_t> seeds = ParseSeeds(o.seeds);
@@ -208,7 +247,9 @@ int RunSuiteCommand(const SuiteOptions& o) {
     }
   }
   const std::vector<SuiteRunRecord> records = RunJobs(jobs, parallel);
-  WriteSuiteSummary(dir, fmt::format("slamkit suite: {}", o.manifest), records);
+  const std::string title = fmt::format("slamkit suite: {}", o.manifest);
+  WriteSuiteSummary(dir, title, records);
+  WriteContactSheet(dir, jobs, records, title);
   output.Commit();
   int failed = 0;
   for (const SuiteRunRecord& r : records) failed += r.failure.empty() ? 0 : 1;

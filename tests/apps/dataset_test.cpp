@@ -179,6 +179,7 @@ TEST(Suite, RunsEveryLogAndSeedAndRecordsAFailedRun) {
   const std::string csv = ReadText(dir / "out" / "summary.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 7);  // header and 6 runs
   EXPECT_NE(ReadText(dir / "out" / "summary.md").find("| csail | 2 |"), std::string::npos);
+  EXPECT_GT(fs::file_size(dir / "out" / "maps.png"), 10000u);  // 6 panels, 2 of them "no map"
   for (const char* seed : {"seed_1", "seed_2"}) {
     EXPECT_TRUE(fs::exists(dir / "out" / "runs" / "f101" / seed / "map.pgm")) << seed;
   }
