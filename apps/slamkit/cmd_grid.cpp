@@ -130,6 +130,7 @@ int RunGridCommand(const GridOptions& o) {
     log.scans.resize(o.max_scans);
   }
   if (log.skipped_lines > 0) PrintStderr("{}: skipped {} bad lines\n", o.log, log.skipped_lines);
+  for (const std::string& note : log.notes) PrintStderr("{}: {}\n", o.log, note);
   std::vector<PoseRelation> relations;
   if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
   const std::optional<Trajectory> reference = LoadReference(o, log);
@@ -162,6 +163,10 @@ int RunGridCommand(const GridOptions& o) {
     metrics["reference"] = o.reference;
     metrics["pair_by"] = o.pair_by == PairBy::kIndex ? "index" : "time";
   }
+  metrics["log"] = o.log;
+  metrics["skipped_lines"] = log.skipped_lines;
+  metrics["no_return_beams"] = log.no_return_beams;
+  metrics["reader_notes"] = log.notes;
   AddOdometryMetrics(eval, metrics);
   if (!eval.error.empty()) metrics["evaluation_error"] = eval.error;
   WriteJson(dir / "metrics.json", metrics);

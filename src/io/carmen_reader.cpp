@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
@@ -43,7 +44,7 @@ class CarmenParser {
       log_.odometry.push_back(odom);
     } else if (kind == "FLASER") {
       AddScan(fields, carmen::ParseFlaser(fields, laser_), line);
-      if (!laser_.max_range_m) unranged_.push_back(log_.scans.size() - 1);
+      (laser_.max_range_m ? param_ranged_ : unranged_).push_back(log_.scans.size() - 1);
     } else if (kind == "ROBOTLASER1") {
       AddScan(fields, carmen::ParseRobotLaser1(fields), line);
     } else if (kind == "PARAM") {
@@ -57,6 +58,8 @@ class CarmenParser {
 
  private:
   void SetMaxRanges();
+  void DropContradictedParams();
+  void CountNoReturns();
 
   void AddScan(const text::Fields& fields, LaserScan scan, int line) {
     Tick(fields, scan.t_s, line, &scan_clock_);
@@ -83,8 +86,15 @@ class CarmenParser {
   StreamClock odom_clock_;
   StreamClock scan_clock_;
   CarmenLog log_;
-  std::vector<std::size_t> unranged_;  // FLASER scans that no PARAM gave a max range
+  std::vector<std::size_t> unranged_;      // FLASER scans that no PARAM gave a max range
+  std::vector<std::size_t> param_ranged_;  // FLASER scans whose max range a PARAM gave
 };
+
+// A PARAM max range is the sensor's no-return range only if (nearly) no reading exceeds it:
+// edmonton's `robot_front_laser_max 10` sits under a third of its readings (up to 51 m), and
+// trusting it made every return beyond 10 m a no-return, erasing the walls of its open halls.
+constexpr double kParamSlackM = 0.01;          // readings written with rounding above the PARAM
+constexpr double kContradictingShare = 0.001;  // more readings than this above it: not a max
 
 // The pose at t_s between the records of `odometry` (sorted by time, not empty) that bracket it:
 // linear in x and y, along the shorter arc in heading; the nearest record outside their span.
@@ -102,9 +112,33 @@ Pose2 InterpolateOdometry(const Trajectory& odometry, double t_s) {
                a.pose.theta() + s * WrapAngle(b.pose.theta() - a.pose.theta()));
 }
 
-// The no-return range of the scans that no PARAM covers: their largest reading (see the
-// header); then the user's override over every scan.
+// The PARAM max ranges that the readings contradict (see kContradictingShare): their scans get
+// the range derived from the data instead, and the log says so in its notes.
+void CarmenParser::DropContradictedParams() {
+  std::map<double, std::vector<std::size_t>> by_range;
+  for (std::size_t k : param_ranged_) by_range[log_.scans[k].max_range_m].push_back(k);
+  for (const auto& [range, scans] : by_range) {
+    std::size_t finite = 0, above = 0;
+    for (std::size_t k : scans) {
+      for (float r : log_.scans[k].ranges_m) {
+        if (!std::isfinite(r)) continue;
+        ++finite;
+        above += r > range + kParamSlackM ? 1 : 0;
+      }
+    }
+    if (above <= kContradictingShare * static_cast<double>(finite)) continue;
+    unranged_.insert(unranged_.end(), scans.begin(), scans.end());
+    log_.notes.push_back(fmt::format(
+        "PARAM max range {:g} m is not the laser's: {} of {} readings of its {} scans lie above "
+        "it, so their no-return range comes from the readings instead",
+        range, above, finite, scans.size()));
+  }
+}
+
+// The no-return range of the scans that no (uncontradicted) PARAM covers: their largest
+// reading (see the header); then the user's override over every scan.
 void CarmenParser::SetMaxRanges() {
+  DropContradictedParams();
   float largest = 0.0f;
   for (std::size_t k : unranged_) {
     for (float r : log_.scans[k].ranges_m) {
@@ -115,6 +149,16 @@ void CarmenParser::SetMaxRanges() {
   for (std::size_t k : unranged_) log_.scans[k].max_range_m = derived;
   if (options_.max_range_m) {
     for (LaserScan& scan : log_.scans) scan.max_range_m = *options_.max_range_m;
+  }
+  CountNoReturns();
+}
+
+// Finite, positive readings at or beyond the scan's no-return range.
+void CarmenParser::CountNoReturns() {
+  for (const LaserScan& scan : log_.scans) {
+    for (float r : scan.ranges_m) {
+      log_.no_return_beams += std::isfinite(r) && r > 0.0f && r >= scan.max_range_m ? 1 : 0;
+    }
   }
 }
 

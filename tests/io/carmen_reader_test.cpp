@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <limits>
 #include <zlib.h>
 
@@ -119,7 +121,11 @@ TEST_F(CarmenReader, ReadsCsailGzip) {
   EXPECT_EQ(log.params.at("laser_front_laser_fov"), "3.14159");
   const LaserScan& scan = log.scans[0];
   ASSERT_EQ(scan.ranges_m.size(), 361u);
-  EXPECT_EQ(scan.max_range_m, 50.0);  // PARAM robot_front_laser_max 50
+  // PARAM robot_front_laser_max 50, but readings reach 81.91 (the laser's no-return value): the
+  // PARAM is not the laser's range, the largest reading is.
+  EXPECT_EQ(scan.max_range_m, double(81.91f));
+  ASSERT_EQ(log.notes.size(), 1u);
+  EXPECT_NE(log.notes[0].find("PARAM max range 50 m is not the laser's"), std::string::npos);
   EXPECT_FALSE(scan.IsReturn(0));     // 81.91
   EXPECT_DOUBLE_EQ(scan.angle_min_rad, -3.14159 / 2.0);
   EXPECT_DOUBLE_EQ(scan.angle_increment_rad, 3.14159 / 360.0);  // radians, both ends included
@@ -184,7 +190,7 @@ TEST_F(CarmenReader, FrontLaserGeometryFromParams) {
       "PARAM laser_front_laser_fov 100 host 0\nPARAM laser_front_laser_max_range 8 host 0\n"
       "PARAM robot_front_laser_max 50 host 0\nPARAM robot_frontlaser_offset 0.25 host 0\n";
   const CarmenLog log = ReadCarmenLog(
-      Write(params + "FLASER 5 1 2 3 9 8 0 0 0 0 0 0 1 host 0\n"  // odd: both ends included
+      Write(params + "FLASER 5 1 2 3 8 7 0 0 0 0 0 0 1 host 0\n"  // odd: both ends included
                      "FLASER 4 1 2 3 4 0 0 0 0 0 0 2 host 0\n"));  // even: fov / n
   ASSERT_EQ(log.scans.size(), 2u);
   EXPECT_DOUBLE_EQ(log.scans[0].angle_min_rad, DegToRad(-50.0));
@@ -192,7 +198,9 @@ TEST_F(CarmenReader, FrontLaserGeometryFromParams) {
   EXPECT_DOUBLE_EQ(log.scans[0].BeamAngle(4), DegToRad(50.0));
   EXPECT_DOUBLE_EQ(log.scans[1].angle_increment_rad, DegToRad(25.0));
   EXPECT_EQ(log.scans[0].max_range_m, 8.0);
-  EXPECT_FALSE(log.scans[0].IsReturn(3));  // 9 m
+  EXPECT_FALSE(log.scans[0].IsReturn(3));  // 8 m: at the PARAM's range
+  EXPECT_TRUE(log.scans[0].IsReturn(4));   // 7 m
+  EXPECT_TRUE(log.notes.empty());
   ExpectSamePose(log.scans[0].laser_offset, Pose2(0.25, 0, 0));
   EXPECT_EQ(log.params.at("laser_front_laser_fov"), "100");
 
@@ -221,13 +229,39 @@ TEST_F(CarmenReader, MaxRangeFromParamCoversTheScansAfterIt) {
   const CarmenLog log = ReadCarmenLog(
       Write("FLASER 2 1 30 0 0 0 0 0 0 1 host 0\n"
             "PARAM robot_front_laser_max 20 host 0\n"
-            "FLASER 2 1 50 0 0 0 0 0 0 2 host 0\n"
+            "FLASER 2 1 20 0 0 0 0 0 0 2 host 0\n"
             "ROBOTLASER1 0 -1.5 3.0 0.01 12 0.01 0 2 1.0 2.0 0 0 0 0 0 0 0 0 0 0 0 0 3 host 3\n"));
   ASSERT_EQ(log.scans.size(), 3u);
-  EXPECT_EQ(log.scans[0].max_range_m, 30.0);  // the uncovered scans' largest reading, not 50
+  EXPECT_EQ(log.scans[0].max_range_m, 30.0);  // the uncovered scans' largest reading
   EXPECT_EQ(log.scans[1].max_range_m, 20.0);
   EXPECT_FALSE(log.scans[1].IsReturn(1));
   EXPECT_EQ(log.scans[2].max_range_m, 12.0);
+}
+
+// Issue 9: edmonton's `PARAM robot_front_laser_max 10` sits under a third of its readings (up to
+// 51 m). Trusted, it turned every return beyond 10 m into a no-return (free space through the
+// wall up to the usable range), and the map of its open halls broke (ATE 1.0-6.4 m over seeds
+// 1-5 against 0.2-0.7 m with the readings' range). A PARAM the readings contradict is dropped.
+TEST_F(CarmenReader, AParamMaxRangeTheReadingsContradictIsDropped) {
+  std::string text = "PARAM robot_front_laser_max 10 host 0\n";
+  for (int k = 0; k < 5; ++k) {
+    text += fmt::format("FLASER 4 2 9.5 14.25 51.15 0 0 0 0 0 0 {} host {}\n", k + 1, k + 1);
+  }
+  const CarmenLog log = ReadCarmenLog(Write(text));
+  ASSERT_EQ(log.scans.size(), 5u);
+  for (const LaserScan& scan : log.scans) EXPECT_EQ(scan.max_range_m, double(51.15f));
+  EXPECT_TRUE(log.scans[0].IsReturn(2));   // 14.25 m: a wall, not a no-return
+  EXPECT_FALSE(log.scans[0].IsReturn(3));  // 51.15 m: the laser's no-return value
+  EXPECT_EQ(log.no_return_beams, 5);
+  ASSERT_EQ(log.notes.size(), 1u);
+  EXPECT_NE(log.notes[0].find("10 of 20 readings of its 5 scans lie above it"), std::string::npos)
+      << log.notes[0];
+  // Readings at the PARAM (its no-return value) or a rounding above it do not contradict it.
+  const CarmenLog kept = ReadCarmenLog(Write("PARAM robot_front_laser_max 10 host 0\n"
+                                             "FLASER 3 2 10.005 10 0 0 0 0 0 0 1 host 0\n"));
+  EXPECT_EQ(kept.scans[0].max_range_m, 10.0);
+  EXPECT_TRUE(kept.notes.empty());
+  EXPECT_EQ(kept.no_return_beams, 2);
 }
 
 TEST_F(CarmenReader, MaxRangeOptionOverridesTheLog) {

@@ -40,6 +40,8 @@ struct CarmenLog {
   std::map<std::string, std::string> params;  // PARAM name value (the last one of a name)
   int skipped_lines = 0;                      // with skip_bad_lines
   int time_steps_back = 0;                    // records accepted a little back in time
+  long long no_return_beams = 0;              // readings at or beyond their scan's max range
+  std::vector<std::string> notes;             // what the reader decided that a user should know
 };
 
 // Reads ODOM, FLASER, ROBOTLASER1 and PARAM records (other records, blank lines and `#` lines are
@@ -59,8 +61,10 @@ struct CarmenLog {
 // 1°, the last one at +89°) and fov/(n-1) for odd n (181 or 361 beams, both ends included).
 // max_range_m (the no-return range: a reading at or above it is no return) is, in this order:
 // options.max_range_m when set; PARAM laser_front_laser_max_range, else robot_front_laser_max,
-// from the PARAM records before the scan; else derived from the log: the largest reading (as
-// stored, a float) of all FLASER scans that no PARAM covers. Lasers write their no-return value
+// from the PARAM records before the scan, unless more than 0.1 % of the readings of the scans it
+// covers exceed it by over 1 cm (then it is not the laser's no-return range: edmonton's
+// `robot_front_laser_max 10` under readings up to 51 m; a note says so); else derived from the
+// log: the largest reading (as stored, a float) of all FLASER scans that no such PARAM covers. Lasers write their no-return value
 // as that largest reading (81.83 in intel.clf, 81.91 in csail), so those beams become no-returns
 // and every shorter one stays a return; in a log where every beam returned, only the beams at
 // the largest reading are lost. Without any reading (no finite positive range) it is infinity.
