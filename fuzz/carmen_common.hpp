@@ -21,8 +21,9 @@ inline void CheckLog(const CarmenLog& log) {
     Check(!scan.ranges_m.empty(), "a scan has at least one beam");
     for (float r : scan.ranges_m) Check(r >= 0.0f, "ranges are non-negative");
     Check(scan.max_range_m > 0.0, "max ranges are positive");
-    Check(std::isfinite(scan.angle_min_rad) && std::isfinite(scan.angle_increment_rad),
-          "scan angles are finite");
+    const int last = static_cast<int>(scan.ranges_m.size()) - 1;
+    Check(std::isfinite(scan.BeamAngle(0)) && std::isfinite(scan.BeamAngle(last)),
+          "beam angles are finite");
     Check(Finite(scan.odometry) && Finite(scan.logged_pose) && Finite(scan.laser_offset),
           "scan poses are finite");
   }
