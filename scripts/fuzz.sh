@@ -53,14 +53,13 @@ run() {
   executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   speed=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
   rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log" | tail -1)
-  local summary="$reader: ${executed:-?} inputs in ${seconds} s (${speed:-?}/s, peak RSS ${rss:-?} MB)"
   if [ "$status" -ne 0 ]; then
-    echo "fuzz: $summary: FAILED (exit $status), log $log" >&2
-    grep -E "^(==[0-9]+==ERROR|SUMMARY|.*runtime error|slamkit fuzz:|.*uncaught exception|artifact_prefix|Test unit written)" \
+    echo "fuzz: $reader: FAILED (exit $status) after ${executed:-?} inputs, log $log" >&2
+    grep -E "^(==[0-9]+== ?ERROR|SUMMARY|terminate called|  what\(\)|.*runtime error|slamkit fuzz:|artifact_prefix)" \
       "$log" | head -20 >&2 || true
     return 1
   fi
-  echo "fuzz: $summary: OK"
+  echo "fuzz: $reader: ${executed:-?} inputs in ${seconds} s (${speed:-?}/s, peak RSS ${rss:-?} MB): OK"
 }
 
 if [ "$1" = all ]; then
