@@ -16,10 +16,13 @@
 
 namespace slamkit::fuzz {
 
-// The process's scratch directory, made on first use and removed at exit. /dev/shm when there is
-// one: the harnesses write a file per input, and a RAM disk keeps that off the real disk.
+// The process's scratch directory, made on first use and removed at exit (left behind when the
+// process dies of a finding). /dev/shm when there is one: the harnesses write a file per input,
+// and a RAM disk keeps that off the real disk.
 inline const std::filesystem::path& ScratchDir() {
-  static const std::filesystem::path dir = [] {
+  // Never destroyed: a static path object would be destroyed before the atexit handler, which
+  // is registered while the object is still being made, runs and reads it.
+  static const std::filesystem::path* const dir = [] {
     std::error_code ec;
     const std::string root = std::filesystem::is_directory("/dev/shm", ec) ? "/dev/shm" : "/tmp";
     std::string pattern = root + "/slamkit_fuzz_XXXXXX";
@@ -31,9 +34,9 @@ inline const std::filesystem::path& ScratchDir() {
       std::error_code ignored;
       std::filesystem::remove_all(ScratchDir(), ignored);
     });
-    return std::filesystem::path(pattern);
+    return new std::filesystem::path(pattern);
   }();
-  return dir;
+  return *dir;
 }
 
 // Writes `bytes` to ScratchDir() / name, replacing the previous input's file; aborts when it
