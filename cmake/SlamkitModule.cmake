@@ -20,6 +20,11 @@ function(slamkit_target_options target)
                                              -fno-sanitize-recover=all)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+  if(SLAMKIT_BUILD_FUZZ)
+    # Coverage feedback for libFuzzer from every target; only the harnesses (fuzz/) link the
+    # fuzzer's main (-fsanitize=fuzzer).
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
 endfunction()
 
 # slamkit_module(NAME DEPS dep1 dep2 ...): static library slamkit_NAME, alias slamkit::NAME.

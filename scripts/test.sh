@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets everything up, then runs the whole test suite: the Release build, then a Debug build with
-# AddressSanitizer and UndefinedBehaviorSanitizer (tests labelled `slow` run in Release only).
-# Between the two, the Release tree is installed and examples/cpp is built against the install.
+# AddressSanitizer and UndefinedBehaviorSanitizer (tests labelled `slow` run in Release only),
+# then a short libFuzzer smoke run of every input reader's harness (fuzz/, scripts/fuzz.sh).
+# Between the first two, the Release tree is installed and examples/cpp is built against it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh release
@@ -20,3 +21,8 @@ done
 scripts/setup.sh asan
 (cd build/asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j "$(nproc)" -LE slow)
+# 20 s per harness, as many at once as there are cores: long enough to catch a reader change that
+# crashes on its seed corpus or on simple mutations of it; real campaigns are scripts/fuzz.sh
+# READER 600. Each run prints its own result line; xargs fails when any of them does.
+scripts/setup.sh fuzz
+ls fuzz/corpus | xargs -P "$(nproc)" -I{} scripts/fuzz.sh {} 20  # a corpus folder per harness

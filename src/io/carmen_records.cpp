@@ -44,6 +44,16 @@ Pose2 PoseAt(const Fields& fields, std::size_t first, const char* const* names) 
                Bounded(fields, first + 2, {names[2]}));
 }
 
+// A timestamp of magnitude at most kCarmenMaxTimestampS.
+double Timestamp(const Fields& fields, std::size_t i) {
+  const double value = fields.Number(i, {"timestamp"});
+  if (std::abs(value) > kCarmenMaxTimestampS) {
+    fields.Fail({"timestamp"}, fmt::format("magnitude above {:g} s ('{}')", kCarmenMaxTimestampS,
+                                           fields.Text(i)));
+  }
+  return value;
+}
+
 float Range(const Fields& fields, std::size_t i, int beam) {
   const double value = fields.Number(i, {"r", beam});
   if (value < 0.0) fields.Fail({"r", beam}, fmt::format("negative range ('{}')", fields.Text(i)));
@@ -91,7 +101,7 @@ StampedPose ParseOdom(const Fields& fields) {
   fields.Expect(std::size(kOdomFields), kOdomFields);
   for (std::size_t i = 3; i < 6; ++i) fields.Number(i, {kOdomFields[i]});
   fields.Number(8, {"logger_timestamp"});
-  return {fields.Number(6, {"timestamp"}), PoseAt(fields, 0, kOdomFields)};
+  return {Timestamp(fields, 6), PoseAt(fields, 0, kOdomFields)};
 }
 
 LaserScan ParseFlaser(const Fields& fields, const FrontLaser& laser) {
@@ -109,7 +119,7 @@ LaserScan ParseFlaser(const Fields& fields, const FrontLaser& laser) {
   const std::size_t pose = static_cast<std::size_t>(n) + 1;
   scan.logged_pose = PoseAt(fields, pose, kFlaserPoseFields);
   scan.odometry = PoseAt(fields, pose + 3, kFlaserPoseFields + 3);
-  scan.t_s = fields.Number(pose + 6, {"timestamp"});
+  scan.t_s = Timestamp(fields, pose + 6);
   fields.Number(pose + 8, {"logger_timestamp"});
   // n even (180 beams at 1°): the beams start at -fov/2 and stop one increment short of +fov/2;
   // n odd (181 or 361 beams): both ends of the field of view are included.
@@ -136,8 +146,9 @@ LaserScan ParseRobotLaser1(const Fields& fields) {
   }
   for (std::size_t i = 0; i + 1 < head; ++i) fields.Number(i, {kRobotLaserHead[i]});
   LaserScan scan;
-  scan.angle_min_rad = fields.Number(1, {"start_angle"});
-  scan.angle_increment_rad = fields.Number(3, {"angular_resolution"});
+  // Bounded like the poses: angles near 1e308 would make the later beams' angles infinite.
+  scan.angle_min_rad = Bounded(fields, 1, {"start_angle"});
+  scan.angle_increment_rad = Bounded(fields, 3, {"angular_resolution"});
   scan.max_range_m = MaxRange(fields, 4, {"max_range"});
   scan.ranges_m.resize(n);
   for (int i = 0; i < n; ++i) scan.ranges_m[i] = Range(fields, head + i, i + 1);
@@ -147,7 +158,7 @@ LaserScan ParseRobotLaser1(const Fields& fields) {
   scan.odometry = scan.logged_pose;
   scan.laser_offset = scan.logged_pose.Between(laser);
   for (std::size_t i = 6; i < 11; ++i) fields.Number(tail + i, {kRobotLaserTail[i]});
-  scan.t_s = fields.Number(tail + 11, {"timestamp"});
+  scan.t_s = Timestamp(fields, tail + 11);
   fields.Number(tail + 13, {"logger_timestamp"});
   return scan;
 }

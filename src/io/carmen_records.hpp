@@ -19,6 +19,9 @@ namespace slamkit::carmen {
 // Bound on pose, odometry, offset and max-range values (metres or radians): larger magnitudes
 // make no physical sense and would overflow downstream (see carmen_reader.hpp).
 inline constexpr double kCarmenMaxMagnitude = 1e6;
+// Bound on timestamps (seconds): 31 700 years, far above Unix time (1.7e9 s, the CARMEN clock).
+// Without it, two timestamps near ±1e308 overflow the odometry interpolation into NaN poses.
+inline constexpr double kCarmenMaxTimestampS = 1e12;
 
 // The front-laser settings that a FLASER record leaves implicit, from the PARAM records so far.
 struct FrontLaser {

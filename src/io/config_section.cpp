@@ -108,7 +108,11 @@ void Section::Read(const std::string& key, double* out, Bound bound) const {
 }
 
 void Section::ReadDegrees(const std::string& key, double* out_rad, Bound bound) const {
-  if (Has(key)) *out_rad = DegToRad(Number(key, Get(key), bound));
+  if (!Has(key)) return;
+  const double rad = DegToRad(Number(key, Get(key), bound));
+  // deg·π overflows for |deg| above about 5.7e307: the radians must be finite as well.
+  if (!std::isfinite(rad)) Fail(key, "too large to convert to radians, got " + Describe(Get(key)));
+  *out_rad = rad;
 }
 
 void Section::Read(const std::string& key, int* out, int min) const {

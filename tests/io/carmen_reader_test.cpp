@@ -383,6 +383,37 @@ TEST_F(CarmenReader, RejectsValuesThatMakeNoPhysicalSense) {
             1u);
 }
 
+// Found by fuzz/carmen_fuzzer.cpp's check that poses and beam angles are finite: timestamps near
+// ±1e308 overflowed the odometry interpolation into a NaN pose (inf / inf), and ROBOTLASER1
+// angles near 1e308 made the later beams' angles infinite. Both are now bounded when read.
+TEST_F(CarmenReader, RejectsTimestampsAndAnglesThatWouldOverflow) {
+  CarmenReadOptions interpolate;
+  interpolate.odometry_from_scan_fields = false;
+  EXPECT_TRUE(Contains(ErrorOf(Write("ODOM 0 0 0 0 0 0 -1.7e308 host 0\n"
+                                     "FLASER 1 1 0 0 0 0 0 0 1.7e308 host 0\n"
+                                     "ODOM 1 0 0 0 0 0 1.75e308 host 0\n"),
+                               interpolate),
+                       "log.clf:1: ODOM field 'timestamp': magnitude above 1e+12 s ('-1.7e308')"));
+  EXPECT_TRUE(Contains(ErrorOfLog("FLASER 1 1 0 0 0 0 0 0 1.7e308 host 0\n"),
+                       "log.clf:1: FLASER field 'timestamp': magnitude above 1e+12 s"));
+  const std::string tail = " 0 0 0 0 0 0 0 0 0 0 0 43 host 43\n";
+  EXPECT_TRUE(Contains(ErrorOfLog("ROBOTLASER1 0 -1.5 3.0 0.01 30 0.01 0 2 1.0 2.0 0 0 0 0 0 0 0 0 "
+                                  "0 0 0 0 1e13 host 43\n"),
+                       "log.clf:1: ROBOTLASER1 field 'timestamp': magnitude above 1e+12 s"));
+  EXPECT_TRUE(Contains(ErrorOfLog("ROBOTLASER1 0 1e308 3.0 0.01 30 0.01 0 2 1.0 2.0 0" + tail),
+                       "log.clf:1: ROBOTLASER1 field 'start_angle': magnitude above 1e+06"));
+  EXPECT_TRUE(Contains(ErrorOfLog("ROBOTLASER1 0 0 3.0 -1e308 30 0.01 0 2 1.0 2.0 0" + tail),
+                       "log.clf:1: ROBOTLASER1 field 'angular_resolution': magnitude above"));
+  // The bounds themselves are fine.
+  const CarmenLog log = ReadCarmenLog(
+      Write("ODOM 0 0 0 0 0 0 -1e12 host 0\nFLASER 1 1 0 0 0 0 0 0 1e12 host 0\n"
+            "ROBOTLASER1 0 -1e6 3.0 1e6 30 0.01 0 2 1.0 2.0 0 0 0 0 0 0 0 0 0 0 0 0 1e12 host 0\n"),
+      interpolate);
+  ASSERT_EQ(log.scans.size(), 2u);
+  EXPECT_TRUE(log.scans[0].odometry.vector().allFinite());
+  EXPECT_EQ(log.scans[1].BeamAngle(1), 0.0);
+}
+
 // Issue 8 item 11: a log with nothing to process says what was expected.
 TEST_F(CarmenReader, RejectsLogsWithoutScans) {
   for (const std::string& text : {std::string(""), std::string("# only a comment\n\n"),

@@ -217,6 +217,27 @@ TEST_F(ScenarioConfigFile, BadValuesNameFileLineAndKey) {
   EXPECT_TRUE(Contains(ErrorOf("dt_s: 0.1\n"), "bad.yaml: key 'route': required"));
 }
 
+// Found by fuzz/scenario_fuzzer.cpp's check that every value is finite: a `_deg` value above
+// about 5.7e307 is finite, but deg·π overflows, so it used to become an infinite angle in radians.
+TEST_F(ScenarioConfigFile, DegreesTooLargeForRadiansNameFileLineAndKey) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"vehicle: {sigma_steer_deg: 1e308}\n",
+       "bad.yaml:2: key 'vehicle.sigma_steer_deg': too large to convert to radians, got '1e308'"},
+      {"vehicle:\n  sigma_theta_deg: 6e307\n", "bad.yaml:3: key 'vehicle.sigma_theta_deg'"},
+      {"controller: {max_turn_rate_degps: 1.7e308}\n",
+       "bad.yaml:2: key 'controller.max_turn_rate_degps': too large"},
+      {"sensor: {sigma_bearing_deg: 1e308}\n", "bad.yaml:2: key 'sensor.sigma_bearing_deg'"},
+      {"initial_pose: {theta_deg: -1e308}\n", "bad.yaml:2: key 'initial_pose.theta_deg'"},
+  };
+  for (const auto& [yaml, expected] : cases) {
+    EXPECT_TRUE(Contains(ErrorOf(std::string(kRoute) + yaml), expected)) << yaml;
+  }
+  // Large but convertible values are still read.
+  const ScenarioConfig config =
+      LoadScenario(Write("ok.yaml", std::string(kRoute) + "vehicle: {sigma_steer_deg: 1e300}\n"));
+  EXPECT_DOUBLE_EQ(config.scenario.vehicle.car_like.sigma_steer_rad, DegToRad(1e300));
+}
+
 TEST_F(ScenarioConfigFile, FileProblemsNameTheFile) {
   EXPECT_TRUE(Contains(ErrorOf("route: {waypoints_m: [[0, 0], [1, 1]\n"), "bad.yaml:"));
   try {

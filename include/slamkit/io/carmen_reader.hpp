@@ -52,8 +52,9 @@ struct CarmenLog {
 // log without any FLASER or ROBOTLASER1 scan (empty, comments only, ODOM only, another format
 // such as a ROS bag). Values checked for physical sense (InputError naming the field): ranges
 // are non-negative; a scan has at least one beam; the field of view is in (0, 360] degrees;
-// max ranges are positive; pose, odometry, offset and max-range values have magnitude at most
-// 1e6 (metres or radians).
+// max ranges are positive; pose, odometry, offset, max-range and ROBOTLASER1 start_angle and
+// angular_resolution values have magnitude at most 1e6 (metres or radians), timestamps at most
+// 1e12 s.
 //
 // Scan geometry. FLASER: the field of view is PARAM laser_front_laser_fov (degrees as CARMEN
 // documents, or radians when at most 2π, as in csail-corrected.log.gz), else π, centred on the

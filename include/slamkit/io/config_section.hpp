@@ -48,7 +48,7 @@ class Section {
   // `value` (found under `key`) as a finite number within `bound`.
   double Number(const std::string& key, const YAML::Node& value, Bound bound) const;
   void Read(const std::string& key, double* out, Bound bound = Bound::kFinite) const;
-  // A value given in degrees, stored in radians.
+  // A value given in degrees, stored in radians (finite too: an error for one too large).
   void ReadDegrees(const std::string& key, double* out_rad, Bound bound) const;
   void Read(const std::string& key, int* out, int min) const;
   void Read(const std::string& key, std::uint64_t* out) const;
