@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs a libFuzzer campaign on one reader's harness (fuzz/), or on each in turn with `all`.
 # Usage: scripts/fuzz.sh READER|all SECONDS   (READER: carmen, carmen_gz, relations, isam,
-#        landmark_csv, scenario, floor_plan, waypoints, occupancy_image)
+#        landmark_csv, scenario, floor_plan, waypoints, occupancy_image, trajectory,
+#        suite_manifest)
 # Needs the fuzz build (scripts/setup.sh fuzz). Starts from the seeds in fuzz/corpus/READER,
 # copied into build/fuzz/corpus-work/READER, which the fuzzer grows (the repository's seeds stay
 # as they are; the working corpus is kept between runs so that campaigns build on each other).
@@ -13,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 readers=(carmen carmen_gz relations isam landmark_csv scenario floor_plan waypoints
-         occupancy_image)
+         occupancy_image trajectory suite_manifest)
 usage() { echo "usage: scripts/fuzz.sh READER|all SECONDS (READER: ${readers[*]})" >&2; exit 2; }
 [ $# -eq 2 ] || usage
 [[ $2 =~ ^[1-9][0-9]*$ ]] || usage
@@ -37,12 +38,13 @@ run() {
   # yaml-cpp and libstdc++ are built without frame pointers, so ASan's fast unwinder reads
   # garbage frames through them and keeps nearly every allocation's "stack" as a new one: the
   # YAML readers' harnesses had 3.2 million of them (233 MB) after 40 s, growing until the 2 GB
-  # limit ends a 10-minute campaign. Those two record no allocation stacks (error reports still
+  # limit ends a 10-minute campaign. The YAML readers' harnesses record no allocation stacks (error reports still
   # show where the error is; rerun the artifact without this option for the allocation's stack);
   # the exact unwinder (fast_unwind_on_malloc=0) ran them 16 times slower.
   local asan_options=${ASAN_OPTIONS:-}
   case "$reader" in
-    scenario | occupancy_image) asan_options=${asan_options:+$asan_options:}malloc_context_size=1 ;;
+    scenario | occupancy_image | suite_manifest)
+      asan_options=${asan_options:+$asan_options:}malloc_context_size=1 ;;
   esac
   local status=0
   # UBSan aborts on its first report in this build (-fno-sanitize-recover=all); the stack trace
