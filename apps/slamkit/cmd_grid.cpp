@@ -150,7 +150,7 @@ int RunGridCommand(const GridOptions& o) {
   const GridEvaluation eval = Evaluate(o, result, odometry, std::move(relations), reference);
 
   const std::filesystem::path& dir = output.staging();
-  const int moved = WriteGridOutputs(dir, result, odometry);
+  const int moved = WriteGridOutputs(dir, result, odometry, std::filesystem::path(o.log).filename().string());
   if (moved > 0) {
     PrintStderr("warning: {}: its scan timestamps cannot pair poses ({}): pair by index; "
                 "trajectory.tum's {} such times were pushed forward in 1 µs steps for TUM "

@@ -19,6 +19,7 @@
 
 #include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/writers.hpp"
+#include "slamkit/report/figures.hpp"
 
 namespace slamkit::app {
 
@@ -186,14 +187,19 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
 }
 
 int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result,
-                     const Trajectory& odometry) {
+                     const Trajectory& odometry, const std::string& title) {
   std::filesystem::create_directories(dir);
   WritePoseText(dir / "trajectory.txt", result.trajectory);
   int moved = 0;
   WriteTumTrajectory(dir / "trajectory.tum", WithIncreasingTimes(result.trajectory, 1e-6, &moved));
   if (!odometry.empty()) WriteTumTrajectory(dir / "odometry.tum", WithIncreasingTimes(odometry));
   WriteOccupancyGridPgm(dir / "map.pgm", result.map);
-  WriteOccupancyGridPng(dir / "map.png", result.map);
+  // map.png is the figure (cropped, the paths over it, a scale bar); map.pgm holds every cell.
+  MapSheetData figure;
+  figure.columns = 1;
+  figure.panel_px = 1200;
+  figure.panels.push_back({title, RenderOccupancyImage(result.map), result.trajectory, odometry});
+  WriteMapContactSheet(dir / "map.png", figure);
   return moved;
 }
 

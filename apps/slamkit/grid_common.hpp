@@ -50,11 +50,12 @@ class OutputDir {
 void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& params);
 
 // DIR/trajectory.txt, DIR/trajectory.tum, DIR/map.pgm + map.yaml and DIR/map.png (the README's
-// output contract), and DIR/odometry.tum when `odometry` is not empty; creates `dir`. TUM times
+// output contract; the PNG is the map figure, titled `title`, with the path and, dimmer, the
+// odometry over it), and DIR/odometry.tum when `odometry` is not empty; creates `dir`. TUM times
 // are made strictly increasing (WithIncreasingTimes, 1 µs steps) for evo; trajectory.txt keeps
 // the log's. Returns how many of trajectory.tum's times were moved.
 int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result,
-                     const Trajectory& odometry = {});
+                     const Trajectory& odometry = {}, const std::string& title = "");
 
 // The summary's first lines: counts, wall time, scans per second, peak memory.
 void PrintGridRun(const std::string& source, const GridRunResult& result, int particles);

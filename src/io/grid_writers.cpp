@@ -19,45 +19,12 @@ constexpr std::uint8_t kOccupiedPixel = 0;
 constexpr std::uint8_t kFreePixel = 254;
 constexpr std::uint8_t kUnknownPixel = 205;
 
-// An 8-bit image of the grid, row-major with the top row (largest y) first.
-struct GridImage {
-  int width = 0;
-  int height = 0;
-  double origin_x_m = 0.0;  // world coordinates of the lower-left corner of the lower-left pixel
-  double origin_y_m = 0.0;
-  std::vector<std::uint8_t> pixels;
-};
-
 std::uint8_t PixelOf(const OccupancyGrid& grid, const CellIndex& c, const GridImageParams& params) {
   if (!grid.IsKnown(c)) return kUnknownPixel;  // never written, or back to exactly 0 log-odds
   const double p = grid.Probability(c);
   if (p >= params.occupied_threshold) return kOccupiedPixel;
   if (p <= params.free_threshold) return kFreePixel;
   return kUnknownPixel;
-}
-
-// The image covers [min_cell - margin, max_cell + margin]. A grid with nothing written is drawn as
-// if cell (0, 0) had been: a (1 + 2·margin)-pixel square of unknown around the world origin, so
-// that a map of a run that produced no scan is still a valid, loadable map.
-GridImage RenderGrid(const OccupancyGrid& grid, const GridImageParams& params) {
-  if (params.margin_cells < 0) throw std::invalid_argument("grid image: negative margin_cells");
-  CellIndex lo = grid.min_cell();
-  CellIndex hi = grid.max_cell();
-  if (lo.x > hi.x || lo.y > hi.y) lo = hi = CellIndex{0, 0};
-  const int m = params.margin_cells;
-  lo = {lo.x - m, lo.y - m};
-  hi = {hi.x + m, hi.y + m};
-  GridImage image;
-  image.width = hi.x - lo.x + 1;
-  image.height = hi.y - lo.y + 1;
-  image.origin_x_m = lo.x * grid.resolution();
-  image.origin_y_m = lo.y * grid.resolution();
-  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
-  std::size_t i = 0;
-  for (int y = hi.y; y >= lo.y; --y) {
-    for (int x = lo.x; x <= hi.x; ++x) image.pixels[i++] = PixelOf(grid, {x, y}, params);
-  }
-  return image;
 }
 
 // A YAML scalar for a file name: plain when that is safe, else double-quoted and escaped.
@@ -74,17 +41,17 @@ std::string YamlScalar(const std::string& text) {
 }
 
 // The map_server YAML; numbers are written in their shortest exact form, so they read back equal.
-std::string MapYaml(const std::string& image_name, const GridImage& image,
+std::string MapYaml(const std::string& image_name, const OccupancyImage& image,
                     const OccupancyGrid& grid, const GridImageParams& params) {
   return fmt::format(
       "image: {}\nresolution: {}\norigin: [{}, {}, 0.0]\nnegate: 0\noccupied_thresh: {}\n"
       "free_thresh: {}\n",
-      YamlScalar(image_name), grid.resolution(), image.origin_x_m, image.origin_y_m,
+      YamlScalar(image_name), grid.resolution(), image.origin_m.x(), image.origin_m.y(),
       params.occupied_threshold, params.free_threshold);
 }
 
 // PNG bytes of `image` through libpng's simplified API (no setjmp/longjmp in our frames).
-std::string EncodePng(const GridImage& image) {
+std::string EncodePng(const OccupancyImage& image) {
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
   png.width = static_cast<png_uint_32>(image.width);
@@ -106,9 +73,33 @@ std::string EncodePng(const GridImage& image) {
 
 }  // namespace
 
+// The image covers [min_cell - margin, max_cell + margin]. A grid with nothing written is drawn as
+// if cell (0, 0) had been: a (1 + 2·margin)-pixel square of unknown around the world origin, so
+// that a map of a run that produced no scan is still a valid, loadable map.
+OccupancyImage RenderOccupancyImage(const OccupancyGrid& grid, const GridImageParams& params) {
+  if (params.margin_cells < 0) throw std::invalid_argument("grid image: negative margin_cells");
+  CellIndex lo = grid.min_cell();
+  CellIndex hi = grid.max_cell();
+  if (lo.x > hi.x || lo.y > hi.y) lo = hi = CellIndex{0, 0};
+  const int m = params.margin_cells;
+  lo = {lo.x - m, lo.y - m};
+  hi = {hi.x + m, hi.y + m};
+  OccupancyImage image;
+  image.width = hi.x - lo.x + 1;
+  image.height = hi.y - lo.y + 1;
+  image.resolution_m = grid.resolution();
+  image.origin_m = {lo.x * grid.resolution(), lo.y * grid.resolution()};
+  image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+  std::size_t i = 0;
+  for (int y = hi.y; y >= lo.y; --y) {
+    for (int x = lo.x; x <= hi.x; ++x) image.pixels[i++] = PixelOf(grid, {x, y}, params);
+  }
+  return image;
+}
+
 void WriteOccupancyGridPgm(const std::filesystem::path& pgm_path, const OccupancyGrid& grid,
                            const GridImageParams& params) {
-  const GridImage image = RenderGrid(grid, params);
+  const OccupancyImage image = RenderOccupancyImage(grid, params);
   WriteFileAtomically(pgm_path, [&image](std::ostream& out) {
     out << "P5\n" << image.width << ' ' << image.height << "\n255\n";
     out.write(reinterpret_cast<const char*>(image.pixels.data()),
@@ -122,7 +113,7 @@ void WriteOccupancyGridPgm(const std::filesystem::path& pgm_path, const Occupanc
 
 void WriteOccupancyGridPng(const std::filesystem::path& png_path, const OccupancyGrid& grid,
                            const GridImageParams& params) {
-  const GridImage image = RenderGrid(grid, params);
+  const OccupancyImage image = RenderOccupancyImage(grid, params);
   WriteFileAtomically(png_path, EncodePng(image));
 }
 

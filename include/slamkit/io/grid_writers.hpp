@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "slamkit/maps/occupancy_grid.hpp"
+#include "slamkit/maps/occupancy_image.hpp"
 
 namespace slamkit {
 
@@ -11,6 +12,10 @@ struct GridImageParams {
   double free_threshold = 0.196;     // probability at or below which a cell is drawn free
   int margin_cells = 10;             // unknown border around the written area
 };
+
+// The grid as map_server's 8-bit image (free 254, occupied 0, unknown 205; top row = largest
+// y), covering the written cells and a margin of unknown around them.
+OccupancyImage RenderOccupancyImage(const OccupancyGrid& grid, const GridImageParams& params = {});
 
 // ROS map_server convention: `map.pgm` (P5, 8 bit, top row = largest y; free 254, occupied 0,
 // unknown 205) and `map.yaml` (image, resolution, origin [x, y, 0] of the lower-left pixel,
