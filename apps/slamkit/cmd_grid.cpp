@@ -19,6 +19,7 @@
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
+#include "slamkit/runners/grid_config.hpp"
 #include "slamkit/io/writers.hpp"
 
 namespace slamkit::app {
@@ -26,6 +27,7 @@ namespace {
 
 struct GridOptions {
   std::string log;
+  std::string config;
   std::string relations;
   std::string reference;
   PairBy pair_by = PairBy::kTime;
@@ -35,7 +37,9 @@ struct GridOptions {
   bool interpolate_odometry = false;
   int max_scans = 0;
   int threads = 0;           // 0: the CPUs this process may use
-  bool frame_odometry = false;  // keep the log's odometry frame instead of starting at the origin
+  bool frame_odometry = false;
+  bool seed_given = false;       // --seed and --particles override --config
+  bool particles_given = false;  // keep the log's odometry frame instead of starting at the origin
   double max_range_m = 0.0;  // 0: from the log
   RbpfGridSlamParams params;
 };
@@ -137,6 +141,11 @@ int RunGridCommand(const GridOptions& o) {
   OutputDir output(o.out);
 
   RbpfGridSlamParams params = o.params;
+  if (!o.config.empty()) {
+    params = LoadGridConfig(o.config);
+    if (o.seed_given) params.seed = o.params.seed;
+    if (o.particles_given) params.particles = o.params.particles;
+  }
   Trajectory odometry = OdometryTrajectory(log);
   if (o.frame_odometry) {
     params.initial_pose = odometry.front().pose;
@@ -164,6 +173,9 @@ int RunGridCommand(const GridOptions& o) {
     metrics["pair_by"] = o.pair_by == PairBy::kIndex ? "index" : "time";
   }
   metrics["log"] = o.log;
+  metrics["version"] = SLAMKIT_VERSION;
+  metrics["params"] = GridParamsJson(params);
+  if (!o.config.empty()) metrics["config"] = o.config;
   metrics["skipped_lines"] = log.skipped_lines;
   metrics["no_return_beams"] = log.no_return_beams;
   metrics["reader_notes"] = log.notes;
@@ -206,7 +218,17 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", o->out, "output directory")->required();
   cmd->add_option("--relations", o->relations, "relations file (Kümmerle et al. 2009)")
       ->check(CLI::ExistingFile);
-  AddGridFilterOptions(cmd, o->params);
+  const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->params);
+  CLI::Option* config =
+      cmd->add_option("--config", o->config,
+                      "the filter's parameters from a YAML file (configs/grid.yaml); instead of "
+                      "the filter options, but --seed and --particles override it")
+          ->check(CLI::ExistingFile);
+  for (CLI::Option* option : filter_options) {
+    if (option->get_name() != "--seed" && option->get_name() != "--particles") {
+      config->excludes(option);
+    }
+  }
   cmd->add_option("--max-map-extent", o->params.grid.max_extent_m,
                   "largest |x| or |y| the map may reach [m]")->check(CLI::PositiveNumber);
   cmd->add_option("--max-map-cells", o->params.grid.max_cells,
@@ -239,7 +261,9 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_flag("--reference-from-log", o->reference_from_log,
                 "compare with the poses the log gives (corrected logs): ATE and RPE, by index")
       ->excludes("--reference");
-  cmd->callback([o, &exit_code] {
+  cmd->callback([o, cmd, &exit_code] {
+    o->seed_given = cmd->count("--seed") > 0;
+    o->particles_given = cmd->count("--particles") > 0;
     exit_code = RunGridCommand(*o);
   });
 }

@@ -127,7 +127,8 @@ void OutputDir::Commit() {
   fs::remove_all(staging_, ec);
 }
 
-void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
+std::vector<CLI::Option*> AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
+  const std::size_t before = cmd->get_options().size();
   cmd->add_option("--particles", p.particles, "particles")->capture_default_str()
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--seed", p.seed, "random seed of the filter")
@@ -184,6 +185,8 @@ void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& p) {
   cmd->add_option("--tracking-max-correction-angle", p.tracking_max_correction_rad,
                   "tracking: largest heading correction accepted [rad]")
       ->capture_default_str()->check(NonNegativeNumber());
+  std::vector<CLI::Option*> all = cmd->get_options([](CLI::Option*) { return true; });
+  return {all.begin() + static_cast<std::ptrdiff_t>(before), all.end()};
 }
 
 int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result,

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -46,8 +47,8 @@ class OutputDir {
   bool committed_ = false;
 };
 
-// The RbpfGridSlam options.
-void AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& params);
+// The RbpfGridSlam options; returns them (so that --config can exclude them).
+std::vector<CLI::Option*> AddGridFilterOptions(CLI::App* cmd, RbpfGridSlamParams& params);
 
 // DIR/trajectory.txt, DIR/trajectory.tum, DIR/map.pgm + map.yaml and DIR/map.png (the README's
 // output contract; the PNG is the map figure, titled `title`, with the path and, dimmer, the

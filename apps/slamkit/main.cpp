@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -31,6 +32,7 @@ bool ReopenIfClosed(int fd, int flags) {
 int Run(int argc, char** argv) {
   CLI::App app{"slamkit: 2D SLAM on simulated worlds and real robot logs"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("slamkit ") + SLAMKIT_VERSION);
   int exit_code = 0;
   slamkit::app::RegisterDemo(app, exit_code);
   slamkit::app::RegisterMonteCarlo(app, exit_code);
@@ -43,6 +45,8 @@ int Run(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

@@ -1,0 +1,160 @@
+#include "slamkit/runners/grid_config.hpp"
+
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "slamkit/io/config_section.hpp"
+
+namespace slamkit {
+namespace {
+
+using config::Bound;
+using config::Section;
+
+const std::vector<std::string> kProposals = {"gaussian", "scan_match"};
+const std::vector<std::string> kTracking = {"tracked_motion", "track_only", "off"};
+const std::vector<std::string> kResampling = {"systematic", "stratified", "multinomial"};
+
+int ProposalIndex(ProposalScheme p) { return p == ProposalScheme::kGaussian ? 0 : 1; }
+ProposalScheme ProposalOf(int i) {
+  return i == 0 ? ProposalScheme::kGaussian : ProposalScheme::kScanMatch;
+}
+int TrackingIndex(TrackingMode m) {
+  return m == TrackingMode::kTrackedMotion ? 0 : m == TrackingMode::kTrackOnly ? 1 : 2;
+}
+TrackingMode TrackingOf(int i) {
+  return i == 0 ? TrackingMode::kTrackedMotion
+                : i == 1 ? TrackingMode::kTrackOnly : TrackingMode::kOff;
+}
+int ResamplingIndex(ResamplingScheme s) {
+  return s == ResamplingScheme::kSystematic ? 0 : s == ResamplingScheme::kStratified ? 1 : 2;
+}
+ResamplingScheme ResamplingOf(int i) {
+  return i == 0 ? ResamplingScheme::kSystematic
+                : i == 1 ? ResamplingScheme::kStratified : ResamplingScheme::kMultinomial;
+}
+
+void ReadMatcher(const Section& s, ScanMatcherParams* m) {
+  s.Read("beam_stride", &m->beam_stride, 1);
+  s.Read("search_cells", &m->search_cells, 0);
+  s.Read("score_sigma_m", &m->score_sigma_m, Bound::kPositive);
+  s.Read("likelihood_sigma_m", &m->likelihood_sigma_m, Bound::kPositive);
+  s.Read("linear_step_m", &m->linear_step_m, Bound::kPositive);
+  s.Read("angular_step_rad", &m->angular_step_rad, Bound::kPositive);
+  s.Read("refinements", &m->refinements, 0);
+  s.Read("min_score_fraction", &m->min_score_fraction, Bound::kNonNegative);
+  s.Read("prior_sigma_xy_m", &m->prior_sigma_xy_m, Bound::kNonNegative);
+  s.Read("prior_sigma_theta_rad", &m->prior_sigma_theta_rad, Bound::kNonNegative);
+  s.Read("coarse_pass", &m->coarse_pass);
+  s.Read("coarse_search_cells", &m->coarse_search_cells, 0);
+  s.Read("coarse_score_sigma_m", &m->coarse_score_sigma_m, Bound::kPositive);
+  s.Read("coarse_beam_stride", &m->coarse_beam_stride, 1);
+  s.Read("coarse_refinements", &m->coarse_refinements, 0);
+}
+
+const std::vector<std::string> kMatcherKeys = {
+    "beam_stride", "search_cells", "score_sigma_m", "likelihood_sigma_m", "linear_step_m",
+    "angular_step_rad", "refinements", "min_score_fraction", "prior_sigma_xy_m",
+    "prior_sigma_theta_rad", "coarse_pass", "coarse_search_cells", "coarse_score_sigma_m",
+    "coarse_beam_stride", "coarse_refinements"};
+
+nlohmann::json MatcherJson(const ScanMatcherParams& m) {
+  return {{"beam_stride", m.beam_stride}, {"search_cells", m.search_cells},
+          {"score_sigma_m", m.score_sigma_m}, {"likelihood_sigma_m", m.likelihood_sigma_m},
+          {"linear_step_m", m.linear_step_m}, {"angular_step_rad", m.angular_step_rad},
+          {"refinements", m.refinements}, {"min_score_fraction", m.min_score_fraction},
+          {"prior_sigma_xy_m", m.prior_sigma_xy_m},
+          {"prior_sigma_theta_rad", m.prior_sigma_theta_rad}, {"coarse_pass", m.coarse_pass},
+          {"coarse_search_cells", m.coarse_search_cells},
+          {"coarse_score_sigma_m", m.coarse_score_sigma_m},
+          {"coarse_beam_stride", m.coarse_beam_stride},
+          {"coarse_refinements", m.coarse_refinements}};
+}
+
+void ReadGrid(const Section& s, OccupancyGridParams* g) {
+  s.Read("resolution_m", &g->resolution_m, Bound::kPositive);
+  double value = 0.0;
+  for (auto [key, field] : {std::pair{"log_odds_hit", &g->log_odds_hit},
+                            std::pair{"log_odds_miss", &g->log_odds_miss},
+                            std::pair{"log_odds_min", &g->log_odds_min},
+                            std::pair{"log_odds_max", &g->log_odds_max}}) {
+    value = *field;
+    s.Read(key, &value);
+    *field = static_cast<float>(value);
+  }
+  s.Read("max_extent_m", &g->max_extent_m, Bound::kPositive);
+  s.Read("max_cells", &g->max_cells);
+  if (g->log_odds_min >= g->log_odds_max) s.Fail("log_odds_min", "must be below log_odds_max");
+}
+
+}  // namespace
+
+RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
+                                  const RbpfGridSlamParams& defaults) {
+  const YAML::Node yaml = config::LoadYamlFile(path);
+  const Section s(yaml, path.string(), "",
+                  {"particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
+                   "likelihood_gain", "motion", "usable_range_m", "matcher", "proposal",
+                   "gaussian", "tracking_mode", "tracking", "tracking_max_correction_m",
+                   "tracking_max_correction_rad", "grid"});
+  RbpfGridSlamParams p = defaults;
+  s.Read("particles", &p.particles, 1);
+  s.Read("seed", &p.seed);
+  s.Read("linear_update_m", &p.linear_update_m, Bound::kNonNegative);
+  s.Read("angular_update_rad", &p.angular_update_rad, Bound::kNonNegative);
+  const Section r = s.Child("resampling", {"threshold", "scheme"});
+  r.Read("threshold", &p.resampling.threshold, Bound::kNonNegative);
+  p.resampling.scheme = ResamplingOf(
+      config::ReadChoice(r, "scheme", kResampling, ResamplingIndex(p.resampling.scheme)));
+  s.Read("likelihood_gain", &p.likelihood_gain, Bound::kPositive);
+  const Section m = s.Child("motion", {"srr", "srt", "str", "stt"});
+  m.Read("srr", &p.motion.srr, Bound::kNonNegative);
+  m.Read("srt", &p.motion.srt, Bound::kNonNegative);
+  m.Read("str", &p.motion.str, Bound::kNonNegative);
+  m.Read("stt", &p.motion.stt, Bound::kNonNegative);
+  s.Read("usable_range_m", &p.usable_range_m, Bound::kPositive);
+  ReadMatcher(s.Child("matcher", kMatcherKeys), &p.matcher);
+  p.proposal = ProposalOf(config::ReadChoice(s, "proposal", kProposals, ProposalIndex(p.proposal)));
+  const Section g = s.Child("gaussian", {"step_xy_m", "step_theta_rad"});
+  g.Read("step_xy_m", &p.gaussian.step_xy_m, Bound::kPositive);
+  g.Read("step_theta_rad", &p.gaussian.step_theta_rad, Bound::kPositive);
+  p.tracking_mode = TrackingOf(
+      config::ReadChoice(s, "tracking_mode", kTracking, TrackingIndex(p.tracking_mode)));
+  ReadMatcher(s.Child("tracking", kMatcherKeys), &p.tracking);
+  s.Read("tracking_max_correction_m", &p.tracking_max_correction_m, Bound::kNonNegative);
+  s.Read("tracking_max_correction_rad", &p.tracking_max_correction_rad, Bound::kNonNegative);
+  ReadGrid(s.Child("grid", {"resolution_m", "log_odds_hit", "log_odds_miss", "log_odds_min",
+                            "log_odds_max", "max_extent_m", "max_cells"}),
+           &p.grid);
+  return p;
+}
+
+nlohmann::json GridParamsJson(const RbpfGridSlamParams& p) {
+  const OccupancyGridParams& g = p.grid;
+  return {{"particles", p.particles},
+          {"seed", p.seed},
+          {"linear_update_m", p.linear_update_m},
+          {"angular_update_rad", p.angular_update_rad},
+          {"resampling", {{"threshold", p.resampling.threshold},
+                          {"scheme", kResampling[ResamplingIndex(p.resampling.scheme)]}}},
+          {"likelihood_gain", p.likelihood_gain},
+          {"motion", {{"srr", p.motion.srr}, {"srt", p.motion.srt}, {"str", p.motion.str},
+                      {"stt", p.motion.stt}}},
+          {"usable_range_m", p.usable_range_m},
+          {"matcher", MatcherJson(p.matcher)},
+          {"proposal", kProposals[ProposalIndex(p.proposal)]},
+          {"gaussian", {{"step_xy_m", p.gaussian.step_xy_m},
+                        {"step_theta_rad", p.gaussian.step_theta_rad}}},
+          {"tracking_mode", kTracking[TrackingIndex(p.tracking_mode)]},
+          {"tracking", MatcherJson(p.tracking)},
+          {"tracking_max_correction_m", p.tracking_max_correction_m},
+          {"tracking_max_correction_rad", p.tracking_max_correction_rad},
+          {"grid", {{"resolution_m", g.resolution_m}, {"log_odds_hit", g.log_odds_hit},
+                    {"log_odds_miss", g.log_odds_miss}, {"log_odds_min", g.log_odds_min},
+                    {"log_odds_max", g.log_odds_max}, {"max_extent_m", g.max_extent_m},
+                    {"max_cells", g.max_cells}}}};
+}
+
+}  // namespace slamkit
