@@ -147,4 +147,11 @@ Eigen::MatrixXd BlockEkf::Covariance() const {
   return P;
 }
 
+// The stored triangle is symmetric by construction once the downdate is applied, so the symmetry
+// test bites on the product U Uᵀ of a pending one; finiteness and PSD bite either way.
+void BlockEkf::CheckHealth(const StateHealthParams& params, bool check_psd,
+                           std::string_view where) const {
+  CheckGaussianHealth(State(), Covariance(), params, check_psd, where);
+}
+
 }  // namespace slamkit

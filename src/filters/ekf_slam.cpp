@@ -1,6 +1,8 @@
 #include "slamkit/filters/ekf_slam.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace slamkit {
@@ -11,6 +13,12 @@ void CheckFinite(std::span<const PointObservation> observations) {
     if (!obs.z.allFinite() || !obs.R.allFinite()) {
       throw std::invalid_argument("EkfSlam::Update: observation with a non-finite value");
     }
+  }
+}
+
+void CheckFinite(const Control& u, double dt_s, const ControlCovariance* control_noise) {
+  if (!u.allFinite() || !std::isfinite(dt_s) || (control_noise && !control_noise->allFinite())) {
+    throw std::invalid_argument("EkfSlam::Predict: non-finite control, time step or noise");
   }
 }
 
@@ -108,15 +116,25 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   landmark_blocks_.clear();
   source_ids_.clear();
   index_of_id_.clear();
+  predictions_ = 0;
+  updates_ = 0;
 }
 
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1).
 void EkfSlam::Predict(const Control& u, double dt_s, const ControlCovariance* control_noise) {
+  CheckFinite(u, dt_s, control_noise);
   Eigen::Matrix3d J_x_x;
   ControlJacobian J_x_u;
   const Pose2 moved = motion_->Move(pose(), u, dt_s, &J_x_x, &J_x_u);
   const ControlCovariance Q = control_noise ? *control_noise : motion_->Noise(u, dt_s);
   ekf_.PredictPose(kPoseBlock, moved, J_x_x, J_x_u, Q);
+  ++predictions_;
+  if (params_.health.every_update()) {
+    // Only the pose block (O(1)): a bad motion shows there first; its rows are checked with the
+    // rest of the state at the next update.
+    CheckGaussianHealth(pose().vector(), PoseCovariance(), params_.health, true,
+                        HealthWhere(HealthStep::kPrediction));
+  }
 }
 
 Linearisation EkfSlam::LinearisePoint(int landmark, const PointObservation& obs) const {
@@ -216,7 +234,37 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
     for (int i = 0; i < n; ++i) RunPipeline(observations.subspan(i, 1), taken, decisions);
   }
   ekf_.ApplyPendingDowndate();
+  ++updates_;
+  if (params_.health.every_update()) {
+    ekf_.CheckHealth(params_.health, params_.health.PsdDue(updates_, StateSize()),
+                     HealthWhere(HealthStep::kUpdate));
+  }
   return decisions;
+}
+
+void EkfSlam::CheckOutputHealth() const {
+  if (params_.health.enabled()) {
+    ekf_.CheckHealth(params_.health, true, HealthWhere(HealthStep::kOutput));
+  }
+}
+
+std::string EkfSlam::HealthWhere(HealthStep step) const {
+  std::ostringstream s;
+  s << "EkfSlam ";
+  const int landmarks = NumLandmarks();
+  switch (step) {
+    case HealthStep::kUpdate:
+      s << "after update " << updates_ << " (prediction " << predictions_ << ", ";
+      break;
+    case HealthStep::kPrediction:
+      s << "after prediction " << predictions_ << " (update " << updates_ << ", ";
+      break;
+    case HealthStep::kOutput:
+      s << "at output (update " << updates_ << ", prediction " << predictions_ << ", ";
+      break;
+  }
+  s << landmarks << " landmarks)";
+  return s.str();
 }
 
 Eigen::Matrix3d EkfSlam::PoseCovariance() const {

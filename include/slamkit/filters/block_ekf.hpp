@@ -3,9 +3,11 @@
 #include <Eigen/Core>
 #include <array>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/core/state_health.hpp"
 #include "slamkit/models/motion_model.hpp"
 
 namespace slamkit {
@@ -135,6 +137,9 @@ class BlockEkf {
   // The full symmetric covariance and the mean (copies; O(n²), for tests and output).
   Eigen::MatrixXd Covariance() const;
   Eigen::VectorXd State() const { return x_.head(n_); }
+  // CheckGaussianHealth() of the mean and the effective covariance P₀ − U Uᵀ (a pending downdate
+  // is accounted for, not applied: the check only reads). O(n²), O(n³) with `check_psd`.
+  void CheckHealth(const StateHealthParams& params, bool check_psd, std::string_view where) const;
 
  private:
   struct Block {
