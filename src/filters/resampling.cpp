@@ -47,7 +47,8 @@ void CheckLogWeights(std::span<const double> log_weights, double gain, std::stri
   if (!WeightsNormalise(weights)) {
     double sum = 0.0;
     for (const double w : weights) sum += w;
-    fail("the normalised " + std::string(what) + "s sum to " + (std::isnan(sum) ? "nan" : std::to_string(sum)));
+    const std::string total = std::isnan(sum) ? "nan" : std::to_string(sum);
+    fail("the normalised " + std::string(what) + "s sum to " + total);
   }
 }
 
@@ -59,7 +60,8 @@ bool WeightsNormalise(std::span<const double> weights) {
 
 void CheckNormalisedAtResampling(long first_unnormalised, std::string_view where) {
   if (first_unnormalised == 0) return;
-  throw NumericalError(std::string(where) + ": the weights did not normalise at resampling decision " +
+  throw NumericalError(std::string(where) +
+                       ": the weights did not normalise at resampling decision " +
                        std::to_string(first_unnormalised));
 }
 

@@ -62,13 +62,12 @@ PointObservation Sighting(double x, double y, LandmarkId id) {
   return obs;
 }
 
-// A sighting of a point block in a pose + point BlockEkf; the landmark's covariance is I.
-Linearisation PointObservationOf(const BlockEkf& ekf, int point, double r) {
+// A direct observation of point block `point` (H = I on it) with zero innovation and noise r I.
+Linearisation PointObservationOf(int point, double r) {
   Linearisation obs;
   obs.innovation = BlockVector::Zero(2);
   obs.H.Add(point, Eigen::Matrix2d::Identity());
   obs.R = r * Eigen::Matrix2d::Identity();
-  (void)ekf;
   return obs;
 }
 
@@ -78,7 +77,7 @@ TEST(BlockEkfHealth, ChecksTheEffectiveCovarianceWithoutApplyingThePendingDownda
   ekf.AddBlock(kPoseKind, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity() * 0.1);
   const int l = ekf.AddBlock(point, Eigen::Vector2d(3, 4), Eigen::Matrix2d::Identity());
   const StateHealthParams health = Health(StateHealthMode::kEveryUpdate);
-  ASSERT_TRUE(ekf.Update(PointObservationOf(ekf, l, 0.5)));
+  ASSERT_TRUE(ekf.Update(PointObservationOf(l, 0.5)));
   ASSERT_TRUE(ekf.HasPendingDowndate());
   EXPECT_EQ(NumericalFailure([&] { ekf.CheckHealth(health, true, "healthy"); }), "");
   EXPECT_TRUE(ekf.HasPendingDowndate());  // the check only reads
@@ -88,7 +87,7 @@ TEST(BlockEkfHealth, ChecksTheEffectiveCovarianceWithoutApplyingThePendingDownda
   broken.RegisterKind({2, {}, false});
   broken.AddBlock(kPoseKind, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity() * 0.1);
   broken.AddBlock(point, Eigen::Vector2d(3, 4), Eigen::Matrix2d::Identity());
-  ASSERT_TRUE(broken.Update(PointObservationOf(broken, l, -0.5)));
+  ASSERT_TRUE(broken.Update(PointObservationOf(l, -0.5)));
   const std::string failure = NumericalFailure([&] { broken.CheckHealth(health, true, "U"); });
   EXPECT_TRUE(Contains(failure, "U: covariance is not positive semi-definite")) << failure;
   EXPECT_TRUE(Contains(failure, "smallest eigenvalue -1")) << failure;
@@ -100,7 +99,7 @@ TEST(BlockEkfHealth, NonFiniteInnovationReachesTheMeanAndIsCaught) {
   const int point = ekf.RegisterKind({2, {}, false});
   ekf.AddBlock(kPoseKind, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Identity() * 0.1);
   const int l = ekf.AddBlock(point, Eigen::Vector2d(3, 4), Eigen::Matrix2d::Identity());
-  Linearisation obs = PointObservationOf(ekf, l, 0.5);
+  Linearisation obs = PointObservationOf(l, 0.5);
   obs.innovation[1] = kNaN;
   ASSERT_TRUE(ekf.Update(obs));
   const std::string failure = NumericalFailure(
@@ -159,10 +158,11 @@ TEST(EkfSlamHealth, OverflowingSightingIsCaughtAtOutputAndAfterTheUpdate) {
     });
     if (mode == StateHealthMode::kAtOutput) {
       // By then the overflow has spread into the mean.
-      EXPECT_EQ(failure, "EkfSlam at output (update 3, prediction 2, 2 landmarks): mean entry 0 is nan");
-    } else {
       EXPECT_EQ(failure,
-                "EkfSlam after update 2 (prediction 1, 2 landmarks): covariance entry (5, 5) is inf");
+                "EkfSlam at output (update 3, prediction 2, 2 landmarks): mean entry 0 is nan");
+    } else {
+      EXPECT_EQ(failure, "EkfSlam after update 2 (prediction 1, 2 landmarks): covariance entry "
+                         "(5, 5) is inf");
     }
   }
 }
@@ -175,7 +175,8 @@ TEST(EkfSlamHealth, NanPastTheValidationIsCaught) {
   slam.Update(std::vector{Sighting(2.0, 1.0, 0)});
   slam.UpdateLandmark(0, Sighting(kNaN, 1.0, 0));
   const std::string at_output = NumericalFailure([&] { slam.CheckOutputHealth(); });
-  EXPECT_EQ(at_output, "EkfSlam at output (update 1, prediction 0, 1 landmarks): mean entry 0 is nan");
+  EXPECT_EQ(at_output,
+            "EkfSlam at output (update 1, prediction 0, 1 landmarks): mean entry 0 is nan");
   EXPECT_EQ(NumericalFailure([&] { slam.Update({}); }),
             "EkfSlam after update 2 (prediction 0, 1 landmarks): mean entry 0 is nan");
 }
