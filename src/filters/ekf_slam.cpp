@@ -118,6 +118,8 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   index_of_id_.clear();
   predictions_ = 0;
   updates_ = 0;
+  health_checks_ = 0;
+  unchecked_ = true;
 }
 
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1).
@@ -129,11 +131,11 @@ void EkfSlam::Predict(const Control& u, double dt_s, const ControlCovariance* co
   const ControlCovariance Q = control_noise ? *control_noise : motion_->Noise(u, dt_s);
   ekf_.PredictPose(kPoseBlock, moved, J_x_x, J_x_u, Q);
   ++predictions_;
-  if (params_.health.every_update()) {
-    // Only the pose block (O(1)): a bad motion shows there first; its rows are checked with the
-    // rest of the state at the next update.
-    CheckGaussianHealth(pose().vector(), PoseCovariance(), params_.health, true,
-                        HealthWhere(HealthStep::kPrediction));
+  // Only what the prediction changed, the pose's mean and covariance rows, and only their
+  // finiteness (O(n): this runs at every step); the PSD test waits for the next update's check.
+  if (params_.health.every_update() && !ekf_.BlockFinite(kPoseBlock)) {
+    ThrowNumericalError(HealthWhere(HealthStep::kPrediction),
+                        ekf_.HealthProblem(params_.health, false).value_or(""));
   }
 }
 
@@ -167,12 +169,14 @@ double EkfSlam::PointDistance(int landmark, const PointObservation& obs, const P
 // SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time).
 void EkfSlam::UpdateLandmark(int landmark, const PointObservation& obs) {
   ekf_.Update(LinearisePoint(landmark, obs));
+  unchecked_ = true;
 }
 
 // SPEC S2, Eq. 8.
 int EkfSlam::AddLandmark(const PointObservation& obs) {
   const int observers[] = {kPoseBlock};
   const int block = AugmentFrom(point_model_, ekf_, observers, obs.z, obs.R);
+  unchecked_ = true;
   const int index = NumLandmarks();
   landmark_blocks_.push_back(block);
   source_ids_.push_back(obs.id);
@@ -235,9 +239,15 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
   }
   ekf_.ApplyPendingDowndate();
   ++updates_;
-  if (params_.health.every_update()) {
-    ekf_.CheckHealth(params_.health, params_.health.PsdDue(updates_, StateSize()),
-                     HealthWhere(HealthStep::kUpdate));
+  // A scan without sightings changes nothing, unless UpdateLandmark() or AddLandmark() ran
+  // before it (what a prediction changes is checked there).
+  if (params_.health.every_update() && (!observations.empty() || unchecked_)) {
+    unchecked_ = false;
+    ++health_checks_;
+    const bool psd = params_.health.PsdDue(health_checks_, StateSize());
+    if (auto problem = ekf_.HealthProblem(params_.health, psd)) {
+      ThrowNumericalError(HealthWhere(HealthStep::kUpdate), *problem);
+    }
   }
   return decisions;
 }

@@ -108,10 +108,13 @@ TEST(StateHealth, CheckFiniteNamesTheEntry) {
 
 TEST(StateHealth, PsdScheduleKeepsItsCostPerUpdateQuadratic) {
   const StateHealthParams params;
-  for (long k = 1; k <= 5; ++k) EXPECT_TRUE(params.PsdDue(k, 31));  // up to 14 landmarks
+  for (long k = 1; k <= 5; ++k) EXPECT_TRUE(params.PsdDue(k, 3));  // the pose alone
   int due = 0;
-  for (long k = 1; k <= 120; ++k) due += params.PsdDue(k, 203) ? 1 : 0;  // 100 landmarks
-  EXPECT_EQ(due, 10);  // every 12th
+  for (long k = 1; k <= 310; ++k) due += params.PsdDue(k, 63) ? 1 : 0;  // 30 landmarks
+  EXPECT_EQ(due, 10);  // every 31st
+  StateHealthParams always = params;
+  always.psd_interval_per_entry = 0.0;
+  EXPECT_TRUE(always.PsdDue(7, 1003));
 }
 
 TEST(StateHealth, DefaultModeFollowsTheBuild) {

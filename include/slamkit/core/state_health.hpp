@@ -1,6 +1,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
+#include <string>
 #include <string_view>
 
 #include "slamkit/core/numerical_error.hpp"
@@ -35,10 +37,13 @@ struct StateHealthParams {
   // rounding puts them a few 1e-16 of the scale on either side.
   double psd_tolerance = 1e-9;
   // Finiteness and symmetry cost O(n²), an update's own order, and run at every update; the PSD
-  // test is a Cholesky factorisation, O(n³), and runs every max(1, ⌊psd_interval_per_entry · n⌋)
-  // -th update, so that its cost per update also stays O(n²) (with 1/16: every update up to
-  // n = 31, i.e. 14 landmarks; every 12th at 100 landmarks). At output all three run.
-  double psd_interval_per_entry = 1.0 / 16.0;
+  // test is a Cholesky factorisation, O(n³), and runs at every max(1, ⌊psd_interval_per_entry · n⌋)
+  // -th every-update check, so that its cost per update stays O(n²) too: n³/3 every n/2 checks is
+  // (2/3) n², below the 8 n² of a scan of 8 sightings' downdates. With 0.5: every 31st check at
+  // 30 landmarks (n = 63), every 101st at 100. Under ASan, `mc` of configs/short.yaml (4 runs,
+  // 2.9 s without checks) took about 0.4 s more for the PSD tests alone with 1/16 (every 3rd
+  // check); with 0.5, all the every-update checks add about 0.2 s. At output all three run.
+  double psd_interval_per_entry = 0.5;
 
   bool every_update() const { return mode == StateHealthMode::kEveryUpdate; }
   bool enabled() const { return mode != StateHealthMode::kOff; }
@@ -47,17 +52,29 @@ struct StateHealthParams {
   bool PsdDue(long update, int state_size) const;
 };
 
-// Throws NumericalError "`where`: `what` entry (i, j) is nan" (or inf) at the first non-finite
-// entry of `m`, in column-major order.
+// "`what` entry (i, j) is nan" (or inf; "entry i" for a vector) at the first non-finite entry of
+// `m` in column-major order; nullopt if there is none.
+std::optional<std::string> NonFiniteProblem(const Eigen::Ref<const Eigen::MatrixXd>& m,
+                                            std::string_view what);
+// The same as a NumericalError "`where`: …".
 void CheckFinite(const Eigen::Ref<const Eigen::MatrixXd>& m, std::string_view what,
                  std::string_view where);
 
 // The health of a Gaussian state: a finite mean, a finite and symmetric covariance (within
 // params.symmetry_tolerance) and, if `check_psd`, a positive semi-definite one (smallest
-// eigenvalue ≥ −params.psd_tolerance · max_i P_ii). Throws NumericalError naming `where` and the
-// check that failed, with the entry or the smallest eigenvalue. Only reads its arguments.
+// eigenvalue ≥ −params.psd_tolerance · max_i P_ii). Returns what failed, with the entry or the
+// smallest eigenvalue (nullopt: healthy); a caller that checks often builds its step's name only
+// then. Only reads its arguments.
+std::optional<std::string> GaussianHealthProblem(
+    const Eigen::Ref<const Eigen::VectorXd>& mean,
+    const Eigen::Ref<const Eigen::MatrixXd>& covariance, const StateHealthParams& params,
+    bool check_psd);
+// The same as a NumericalError "`where`: …".
 void CheckGaussianHealth(const Eigen::Ref<const Eigen::VectorXd>& mean,
                          const Eigen::Ref<const Eigen::MatrixXd>& covariance,
                          const StateHealthParams& params, bool check_psd, std::string_view where);
+
+// Throws NumericalError "`where`: `problem`".
+[[noreturn]] void ThrowNumericalError(std::string_view where, std::string_view problem);
 
 }  // namespace slamkit

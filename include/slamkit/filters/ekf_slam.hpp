@@ -71,12 +71,14 @@ class EkfSlam final : public LandmarkSlamFilter {
   void Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov = Eigen::Matrix3d::Zero()) override;
   // SPEC S2, Eq. 2 and Table 10.1 of Probabilistic Robotics: moves the pose with control `u`.
   // Throws std::invalid_argument on a non-finite control, time step or noise (before any change);
-  // with health.every_update(), NumericalError if the moved pose or its covariance is not healthy.
+  // with health.every_update(), NumericalError if the moved pose or its covariance rows are not
+  // finite.
   void Predict(const Control& u, double dt_s,
                const ControlCovariance* control_noise = nullptr) override;
   // Association, selection, sequential updates and augmentation of one scan.
   // Throws std::invalid_argument on a non-finite measurement or covariance (before any change);
-  // with health.every_update(), NumericalError if the resulting state is not healthy.
+  // with health.every_update(), NumericalError if the resulting state is not healthy (unless
+  // nothing changed it: an empty scan after a prediction, which checks what it changes).
   std::vector<AssociationDecision> Update(std::span<const PointObservation> observations) override;
   // The full check (finite, symmetric, PSD) unless health.mode is kOff; NumericalError if it fails.
   void CheckOutputHealth() const override;
@@ -143,6 +145,8 @@ class EkfSlam final : public LandmarkSlamFilter {
   mutable std::vector<AssociationCandidate> candidate_scratch_;
   long predictions_ = 0;  // since Reset(), to name the step a health check failed at
   long updates_ = 0;
+  long health_checks_ = 0;  // every-update checks of the whole state, for the PSD schedule
+  bool unchecked_ = true;   // changed since the last every-update check other than by Predict()
 };
 
 }  // namespace slamkit
