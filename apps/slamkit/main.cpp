@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "slamkit/core/numerical_error.hpp"
 #include "slamkit/io/error.hpp"
 
 namespace {
@@ -54,6 +55,11 @@ int Run(int argc, char** argv) {
   } catch (const slamkit::InputError& e) {
     slamkit::app::PrintStderr("slamkit: error: {}\n", e.what());
     return 2;
+  } catch (const slamkit::NumericalError& e) {
+    // Raised before the outputs are written (the state is checked first), so --out is untouched.
+    slamkit::app::PrintStderr("slamkit: error: numerical failure, nothing written: {}\n",
+                              e.what());
+    return 3;
   } catch (const std::exception& e) {
     slamkit::app::PrintStderr("slamkit: error: {}\n", e.what());
     return 1;

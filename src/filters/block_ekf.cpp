@@ -2,11 +2,24 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "slamkit/core/angle.hpp"
 
 namespace slamkit {
+namespace {
+
+// A plain loop: the health checks run it at every step in Debug builds, where Eigen's expressions
+// (allFinite()) are not inlined and cost several times more.
+bool AllFinite(const double* v, int size) {
+  for (int i = 0; i < size; ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 BlockEkf::BlockEkf(int initial_capacity) {
   RegisterKind({3, {2}, true});
@@ -145,6 +158,43 @@ Eigen::MatrixXd BlockEkf::Covariance() const {
   Eigen::MatrixXd P = P_.topLeftCorner(n_, n_).selfadjointView<Eigen::Upper>();
   if (m_ > 0) P.noalias() -= U_.topLeftCorner(n_, m_) * U_.topLeftCorner(n_, m_).transpose();
   return P;
+}
+
+// The stored triangle is symmetric by construction once the downdate is applied, so the symmetry
+// test bites on the product U Uᵀ of a pending one; finiteness and PSD bite either way.
+std::optional<std::string> BlockEkf::HealthProblem(const StateHealthParams& params,
+                                                   bool check_psd) const {
+  if (m_ > 0 || check_psd) return GaussianHealthProblem(State(), Covariance(), params, check_psd);
+  // Nothing pending and no PSD test: the stored triangle is the covariance, so checking its
+  // entries is all that is left, without the O(n²) copy (the every-update check in Debug).
+  if (!AllFinite(x_.data(), n_)) return NonFiniteProblem(State(), "mean");
+  for (int j = 0; j < n_; ++j) {
+    if (!AllFinite(&P_(0, j), j + 1)) return NonFiniteProblem(Covariance(), "covariance");
+  }
+  return std::nullopt;
+}
+
+bool BlockEkf::BlockFinite(int block) const {
+  const int o = blocks_[block].offset, d = blocks_[block].dim;
+  if (!x_.segment(o, d).allFinite()) return false;
+  if (m_ > 0) {
+    Eigen::MatrixXd scratch;
+    return BlockColumns(block, scratch).allFinite();
+  }
+  // In place, on the stored triangle: the column above the block and the block's upper triangle,
+  // then the row to its right, d entries of each later column.
+  for (int j = o; j < o + d; ++j) {
+    if (!AllFinite(&P_(0, j), j + 1)) return false;
+  }
+  for (int j = o + d; j < n_; ++j) {
+    if (!AllFinite(&P_(o, j), d)) return false;
+  }
+  return true;
+}
+
+void BlockEkf::CheckHealth(const StateHealthParams& params, bool check_psd,
+                           std::string_view where) const {
+  if (auto problem = HealthProblem(params, check_psd)) ThrowNumericalError(where, *problem);
 }
 
 }  // namespace slamkit

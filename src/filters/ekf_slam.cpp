@@ -1,6 +1,8 @@
 #include "slamkit/filters/ekf_slam.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace slamkit {
@@ -11,6 +13,12 @@ void CheckFinite(std::span<const PointObservation> observations) {
     if (!obs.z.allFinite() || !obs.R.allFinite()) {
       throw std::invalid_argument("EkfSlam::Update: observation with a non-finite value");
     }
+  }
+}
+
+void CheckFinite(const Control& u, double dt_s, const ControlCovariance* control_noise) {
+  if (!u.allFinite() || !std::isfinite(dt_s) || (control_noise && !control_noise->allFinite())) {
+    throw std::invalid_argument("EkfSlam::Predict: non-finite control, time step or noise");
   }
 }
 
@@ -108,15 +116,27 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   landmark_blocks_.clear();
   source_ids_.clear();
   index_of_id_.clear();
+  predictions_ = 0;
+  updates_ = 0;
+  health_checks_ = 0;
+  unchecked_ = true;
 }
 
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1).
 void EkfSlam::Predict(const Control& u, double dt_s, const ControlCovariance* control_noise) {
+  CheckFinite(u, dt_s, control_noise);
   Eigen::Matrix3d J_x_x;
   ControlJacobian J_x_u;
   const Pose2 moved = motion_->Move(pose(), u, dt_s, &J_x_x, &J_x_u);
   const ControlCovariance Q = control_noise ? *control_noise : motion_->Noise(u, dt_s);
   ekf_.PredictPose(kPoseBlock, moved, J_x_x, J_x_u, Q);
+  ++predictions_;
+  // Only what the prediction changed, the pose's mean and covariance rows, and only their
+  // finiteness (O(n): this runs at every step); the PSD test waits for the next update's check.
+  if (params_.health.every_update() && !ekf_.BlockFinite(kPoseBlock)) {
+    ThrowNumericalError(HealthWhere(HealthStep::kPrediction),
+                        ekf_.HealthProblem(params_.health, false).value_or(""));
+  }
 }
 
 Linearisation EkfSlam::LinearisePoint(int landmark, const PointObservation& obs) const {
@@ -149,12 +169,14 @@ double EkfSlam::PointDistance(int landmark, const PointObservation& obs, const P
 // SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time).
 void EkfSlam::UpdateLandmark(int landmark, const PointObservation& obs) {
   ekf_.Update(LinearisePoint(landmark, obs));
+  unchecked_ = true;
 }
 
 // SPEC S2, Eq. 8.
 int EkfSlam::AddLandmark(const PointObservation& obs) {
   const int observers[] = {kPoseBlock};
   const int block = AugmentFrom(point_model_, ekf_, observers, obs.z, obs.R);
+  unchecked_ = true;
   const int index = NumLandmarks();
   landmark_blocks_.push_back(block);
   source_ids_.push_back(obs.id);
@@ -216,7 +238,43 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
     for (int i = 0; i < n; ++i) RunPipeline(observations.subspan(i, 1), taken, decisions);
   }
   ekf_.ApplyPendingDowndate();
+  ++updates_;
+  // A scan without sightings changes nothing, unless UpdateLandmark() or AddLandmark() ran
+  // before it (what a prediction changes is checked there).
+  if (params_.health.every_update() && (!observations.empty() || unchecked_)) {
+    unchecked_ = false;
+    ++health_checks_;
+    const bool psd = params_.health.PsdDue(health_checks_, StateSize());
+    if (auto problem = ekf_.HealthProblem(params_.health, psd)) {
+      ThrowNumericalError(HealthWhere(HealthStep::kUpdate), *problem);
+    }
+  }
   return decisions;
+}
+
+void EkfSlam::CheckOutputHealth() const {
+  if (params_.health.enabled()) {
+    ekf_.CheckHealth(params_.health, true, HealthWhere(HealthStep::kOutput));
+  }
+}
+
+std::string EkfSlam::HealthWhere(HealthStep step) const {
+  std::ostringstream s;
+  s << "EkfSlam ";
+  const int landmarks = NumLandmarks();
+  switch (step) {
+    case HealthStep::kUpdate:
+      s << "after update " << updates_ << " (prediction " << predictions_ << ", ";
+      break;
+    case HealthStep::kPrediction:
+      s << "after prediction " << predictions_ << " (update " << updates_ << ", ";
+      break;
+    case HealthStep::kOutput:
+      s << "at output (update " << updates_ << ", prediction " << predictions_ << ", ";
+      break;
+  }
+  s << landmarks << " landmarks)";
+  return s.str();
 }
 
 Eigen::Matrix3d EkfSlam::PoseCovariance() const {

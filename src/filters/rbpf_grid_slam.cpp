@@ -45,11 +45,35 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
     return false;
   }
   TrackAndMove(scan, scan_index, delta);
+  if (params_.health.every_update()) {
+    // Before resampling, which would replace a particle with a bad weight by a healthy copy. The
+    // rest of the update moves no pose.
+    CheckParticleHealth("RbpfGridSlam at update " + std::to_string(updates_ + 1) + " (scan " +
+                        std::to_string(scan_index) + ")");
+  }
   ResampleIfNeeded();
   InsertIntoMaps(scan, scan_index);
   last_update_odometry_ = scan.odometry;
   ++updates_;
   return true;
+}
+
+// The maps need no check: a cell is an 8-bit fixed-point log-odds, clamped, never non-finite.
+void RbpfGridSlam::CheckParticleHealth(const std::string& where) const {
+  for (int i = 0; i < particles_.size(); ++i) {
+    CheckFinite(particles_[i].pose.vector(), "particle " + std::to_string(i) + "'s pose", where);
+  }
+  particles_.CheckHealth(params_.likelihood_gain / double(particles_.size()), where);
+}
+
+void RbpfGridSlam::CheckOutputHealth() const {
+  if (!params_.health.enabled() || particles_.empty()) return;
+  const std::string where = "RbpfGridSlam at output (update " + std::to_string(updates_) + ")";
+  CheckParticleHealth(where);
+  for (std::size_t i = 0; i < scans_.size(); ++i) {
+    CheckFinite(scans_[i].since_update.vector(), "scan " + std::to_string(i) + "'s tracked pose",
+                where);
+  }
 }
 
 // Brings the tracking of the scans since the last update up to date and moves the particles: by

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "slamkit/core/numerical_error.hpp"
 
 namespace slamkit {
 
@@ -22,6 +25,44 @@ std::vector<double> NormaliseLogWeights(std::span<const double> log_weights, dou
   }
   for (double& v : w) v /= sum;
   return w;
+}
+
+void CheckLogWeights(std::span<const double> log_weights, double gain, std::string_view what,
+                     std::string_view where) {
+  const auto fail = [&](const std::string& problem) {
+    throw NumericalError(std::string(where) + ": " + problem);
+  };
+  bool any_finite = false;
+  for (std::size_t i = 0; i < log_weights.size(); ++i) {
+    const double l = log_weights[i];
+    if (std::isnan(l) || l == INFINITY) {
+      fail("particle " + std::to_string(i) + "'s " + std::string(what) + " is " +
+           (std::isnan(l) ? "nan" : "inf"));
+    }
+    any_finite = any_finite || std::isfinite(l);
+  }
+  if (log_weights.empty()) return;
+  if (!any_finite) fail("every particle's " + std::string(what) + " is -inf");
+  const std::vector<double> weights = NormaliseLogWeights(log_weights, gain);
+  if (!WeightsNormalise(weights)) {
+    double sum = 0.0;
+    for (const double w : weights) sum += w;
+    const std::string total = std::isnan(sum) ? "nan" : std::to_string(sum);
+    fail("the normalised " + std::string(what) + "s sum to " + total);
+  }
+}
+
+bool WeightsNormalise(std::span<const double> weights) {
+  double sum = 0.0;
+  for (const double w : weights) sum += w;
+  return weights.empty() || std::abs(sum - 1.0) <= 1e-9;  // false for NaN
+}
+
+void CheckNormalisedAtResampling(long first_unnormalised, std::string_view where) {
+  if (first_unnormalised == 0) return;
+  throw NumericalError(std::string(where) +
+                       ": the weights did not normalise at resampling decision " +
+                       std::to_string(first_unnormalised));
 }
 
 namespace {

@@ -25,6 +25,7 @@ GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params
       slam.ProcessScan(log.scans[i]);
       if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
     }
+    slam.CheckOutputHealth();  // NumericalError: not an input error, so not caught below
     out.trajectory = slam.BestTrajectory();
     out.map = slam.BestMap();
     out.updates = slam.updates();

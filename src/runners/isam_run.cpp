@@ -66,6 +66,8 @@ IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) 
     update(step.sightings);
     out.estimate.push_back({double(step.pose_index), slam.pose()});
   }
+  // Before anything is taken from the state: a run gone numerically bad gives no map of NaN.
+  slam.CheckOutputHealth();
   out.map = slam.Map();
   out.association_agreement = AssociationAgreement(assigned, out.sightings);
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

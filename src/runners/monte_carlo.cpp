@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "slamkit/core/cpu.hpp"
+#include "slamkit/core/numerical_error.hpp"
 #include "slamkit/eval/alignment.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/io/error.hpp"
@@ -139,6 +140,7 @@ RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
     out.estimate.push_back({step.t_s, estimate});
   }
   out.truth = truth;
+  filter.CheckOutputHealth();  // before the map, the one output still read from the state
   // After the run: join the filter's outputs with the truth.
   out.map = filter.Map();
   AssociationScorer scorer;
@@ -235,6 +237,23 @@ RunSummary SummaryOf(const RunResult& r) {
   return s;
 }
 
+// Run k of a Monte Carlo set: its simulation, from its own streams of the seed, and its filter. A
+// numerical failure names the run, so that it can be reproduced alone.
+RunResult RunOne(const ScenarioParams& scenario, const LandmarkWorld& world,
+                 const LandmarkFilterFactory& make_filter, const MonteCarloParams& params, int k) {
+  const auto run = static_cast<std::uint64_t>(k);
+  Rng noise_rng = Rng::ForStream(params.seed, run);
+  Rng order_rng = Rng::ForStream(params.seed, kObservationOrderStreams + run);
+  const SimRun sim = Simulate(scenario, world, noise_rng, order_rng);
+  const std::unique_ptr<LandmarkSlamFilter> filter = make_filter();
+  try {
+    return RunLandmarkFilter(*filter, sim, world, scenario.dt_s, params.known_association);
+  } catch (const NumericalError& e) {
+    throw NumericalError("run " + std::to_string(k) + " of seed " + std::to_string(params.seed) +
+                         ": " + e.what());
+  }
+}
+
 }  // namespace
 
 MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
@@ -268,13 +287,8 @@ MonteCarloResult RunMonteCarlo(const ScenarioParams& scenario,
     batch.assign(static_cast<std::size_t>(last - first), RunResult{});
     arena.execute([&] {
       tbb::parallel_for(first, last, [&](int k) {
-        const auto run = static_cast<std::uint64_t>(k);
-        Rng noise_rng = Rng::ForStream(params.seed, run);
-        Rng order_rng = Rng::ForStream(params.seed, kObservationOrderStreams + run);
-        const SimRun sim = Simulate(scenario, mc.world, noise_rng, order_rng);
-        const std::unique_ptr<LandmarkSlamFilter> filter = make_filter();
         batch[static_cast<std::size_t>(k - first)] =
-            RunLandmarkFilter(*filter, sim, mc.world, scenario.dt_s, params.known_association);
+            RunOne(scenario, mc.world, make_filter, params, k);
         const std::lock_guard lock(progress_mutex);
         ++finished;
         if (params.progress) params.progress(finished, params.runs);

@@ -2,10 +2,14 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/core/state_health.hpp"
 #include "slamkit/models/motion_model.hpp"
 
 namespace slamkit {
@@ -135,6 +139,13 @@ class BlockEkf {
   // The full symmetric covariance and the mean (copies; O(n²), for tests and output).
   Eigen::MatrixXd Covariance() const;
   Eigen::VectorXd State() const { return x_.head(n_); }
+  // GaussianHealthProblem() of the mean and the effective covariance P₀ − U Uᵀ (a pending
+  // downdate is accounted for, not applied: the check only reads). O(n²), O(n³) with `check_psd`.
+  std::optional<std::string> HealthProblem(const StateHealthParams& params, bool check_psd) const;
+  // The same as a NumericalError "`where`: …".
+  void CheckHealth(const StateHealthParams& params, bool check_psd, std::string_view where) const;
+  // Whether block `block`'s mean and covariance rows are finite: what a prediction changes. O(n).
+  bool BlockFinite(int block) const;
 
  private:
   struct Block {

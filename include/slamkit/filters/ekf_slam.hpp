@@ -3,11 +3,13 @@
 #include <Eigen/Core>
 #include <memory>
 #include <span>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "slamkit/core/ids.hpp"
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/core/state_health.hpp"
 #include "slamkit/filters/block_ekf.hpp"
 #include "slamkit/filters/data_association.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
@@ -45,6 +47,9 @@ struct EkfSlamParams {
   double association_margin_m = 5.0;
   // Landmark slots allocated up front; the state grows by doubling beyond this.
   int initial_landmark_capacity = 64;
+  // When the state's health is checked (finite, symmetric, PSD; see StateHealthParams for the
+  // schedule): every update in Debug and sanitizer builds, at output in Release.
+  StateHealthParams health;
 
   bool known_association() const { return association_method == AssociationMethod::kKnown; }
 };
@@ -65,11 +70,18 @@ class EkfSlam final : public LandmarkSlamFilter {
 
   void Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov = Eigen::Matrix3d::Zero()) override;
   // SPEC S2, Eq. 2 and Table 10.1 of Probabilistic Robotics: moves the pose with control `u`.
+  // Throws std::invalid_argument on a non-finite control, time step or noise (before any change);
+  // with health.every_update(), NumericalError if the moved pose or its covariance rows are not
+  // finite.
   void Predict(const Control& u, double dt_s,
                const ControlCovariance* control_noise = nullptr) override;
   // Association, selection, sequential updates and augmentation of one scan.
-  // Throws std::invalid_argument on a non-finite measurement or covariance (before any change).
+  // Throws std::invalid_argument on a non-finite measurement or covariance (before any change);
+  // with health.every_update(), NumericalError if the resulting state is not healthy (unless
+  // nothing changed it: an empty scan after a prediction, which checks what it changes).
   std::vector<AssociationDecision> Update(std::span<const PointObservation> observations) override;
+  // The full check (finite, symmetric, PSD) unless health.mode is kOff; NumericalError if it fails.
+  void CheckOutputHealth() const override;
 
   // One sequential update of landmark `landmark` with `obs` (Table 10.2, one innovation). The
   // covariance downdate stays deferred until ApplyPendingDowndate(), Predict() or Update();
@@ -105,6 +117,10 @@ class EkfSlam final : public LandmarkSlamFilter {
   double PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
                        const Eigen::Matrix3d& P_pose) const;
   MatchedObservation Matched(int landmark, const PointObservation& obs) const;
+  // Where a failed health check happened: "EkfSlam after update 5 (prediction 4, 12
+  // landmarks)", "EkfSlam after prediction 4 (…)" or "EkfSlam at output (…)".
+  enum class HealthStep { kUpdate, kPrediction, kOutput };
+  std::string HealthWhere(HealthStep step) const;
   // The steps of SPEC S2 / S1 on `part` of a scan (all of it, or one observation).
   void RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
                    std::vector<AssociationDecision>& decisions);
@@ -127,6 +143,10 @@ class EkfSlam final : public LandmarkSlamFilter {
   // Scratch for ScanContext::Candidates(): a context lives for one observation on the
   // per-observation schedule, so a buffer of its own would be reallocated for each.
   mutable std::vector<AssociationCandidate> candidate_scratch_;
+  long predictions_ = 0;  // since Reset(), to name the step a health check failed at
+  long updates_ = 0;
+  long health_checks_ = 0;  // every-update checks of the whole state, for the PSD schedule
+  bool unchecked_ = true;   // changed since the last every-update check other than by Predict()
 };
 
 }  // namespace slamkit

@@ -36,6 +36,10 @@ class LandmarkSlamFilter {
   virtual int NumLandmarks() const = 0;
   // The estimated landmarks with their marginal covariances.
   virtual LandmarkMap Map() const = 0;
+  // What a harness calls before it writes results: throws NumericalError (core/numerical_error)
+  // if the state is not healthy (non-finite, or a covariance that is not symmetric PSD). The
+  // default has nothing to check.
+  virtual void CheckOutputHealth() const {}
 };
 
 }  // namespace slamkit

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <span>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -76,6 +77,8 @@ class ParticleSet {
   // when nothing was resampled).
   bool ResampleIfNeeded(double gain, const ResamplingParams& params, Rng& rng) {
     const std::vector<double> weights = Weights(gain);
+    ++decisions_;
+    if (first_unnormalised_ == 0 && !WeightsNormalise(weights)) first_unnormalised_ = decisions_;
     last_neff_ = slamkit::EffectiveSampleSize(weights);
     for (int i = 0; i < size(); ++i) sources_[i] = i;
     if (last_neff_ >= params.threshold * double(size())) return false;
@@ -99,6 +102,16 @@ class ParticleSet {
     sources_.assign(keep.begin(), keep.end());
   }
 
+  // CheckLogWeights() of the weights since resampling (with `gain`) and of the totals, and
+  // whether every resampling decision had weights that normalised (resampling on NaN weights
+  // keeps copies of healthy particles, so the weights alone no longer show it): throws
+  // NumericalError "`where`: …" naming the particle or the decision. O(N).
+  void CheckHealth(double gain, std::string_view where) const {
+    CheckLogWeights(log_weights_, gain, "log-weight", where);
+    CheckLogWeights(total_log_weights_, 1.0, "total log-weight", where);
+    CheckNormalisedAtResampling(first_unnormalised_, where);
+  }
+
   int source(int i) const { return sources_[i]; }
   double last_neff() const { return last_neff_; }
 
@@ -108,6 +121,8 @@ class ParticleSet {
   std::vector<double> total_log_weights_;  // over the particle's whole history
   std::vector<int> sources_;
   double last_neff_ = 0.0;
+  long decisions_ = 0;           // ResampleIfNeeded() calls
+  long first_unnormalised_ = 0;  // the first whose weights did not normalise (1, 2, …); 0: none
 };
 
 }  // namespace slamkit

@@ -3,9 +3,11 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/state_health.hpp"
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/filters/gaussian_proposal.hpp"
 #include "slamkit/filters/grid_map_view.hpp"
@@ -116,6 +118,10 @@ struct RbpfGridSlamParams {
   // The pose of the first scan: the map and the trajectory are in this frame (the origin by
   // default; the log's first odometry pose keeps the log's frame).
   Pose2 initial_pose;
+  // When the particles' health is checked (finite poses; log-weights finite or −∞, not all −∞,
+  // normalising to 1): after every update in Debug and sanitizer builds, at output in Release.
+  // O(particles), so the every-update cost is negligible; the covariance tolerances are unused.
+  StateHealthParams health;
 };
 
 // One particle of RbpfGridSlam.
@@ -160,6 +166,9 @@ class RbpfGridSlam {
   int updates() const { return updates_; }
   int resamples() const { return resamples_; }
   double last_neff() const { return particles_.last_neff(); }
+  // The particles' health (see RbpfGridSlamParams::health) and the tracked poses of the scans,
+  // unless health.mode is kOff; NumericalError naming the particle or scan if it fails.
+  void CheckOutputHealth() const;
 
  private:
   void Initialise(const LaserScan& scan);
@@ -169,6 +178,7 @@ class RbpfGridSlam {
   void TrackAndMove(const LaserScan& scan, int scan_index, const Pose2& odometry_delta);
   void TrackPending(const GridMapView& map, const Pose2& anchor);
   void FinishTracking();
+  void CheckParticleHealth(const std::string& where) const;
 
   RbpfGridSlamParams params_;
   GridWeightFactor extra_factor_;
