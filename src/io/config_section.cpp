@@ -42,6 +42,17 @@ std::string LineOf(const YAML::Mark& mark) {
 }  // namespace
 
 YAML::Node LoadYamlFile(const std::filesystem::path& path) {
+  // yaml-cpp reads the whole stream: a device or a FIFO would never end, a huge file not fit.
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(path.string() + ": not a regular file (a directory, device or FIFO)");
+  }
+  constexpr std::uintmax_t kMaxYamlBytes = std::uintmax_t{64} << 20;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxYamlBytes) {
+    throw InputError(fmt::format("{}: {} bytes, beyond the 64 MiB a config file may have",
+                                 path.string(), size));
+  }
   try {
     return YAML::LoadFile(path.string());
   } catch (const YAML::BadFile&) {

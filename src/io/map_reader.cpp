@@ -61,6 +61,10 @@ class PgmParser {
     }
     ++pos_;
     const std::size_t expected = static_cast<std::size_t>(image.width) * image.height;
+    if (expected > kMaxPixels) {
+      Fail(fmt::format("{} × {} pixels is beyond the {} a map image may have", image.width,
+                       image.height, kMaxPixels));
+    }
     const std::size_t available = bytes_.size() - pos_;
     if (available < expected) {
       Fail(fmt::format("truncated pixel data: {} × {} needs {} bytes, the file has {}",
@@ -79,6 +83,14 @@ class PgmParser {
  private:
   // Larger sides are taken for a corrupt header rather than allocated.
   static constexpr int kMaxSide = 1 << 16;
+
+ public:
+  // 16384 × 16384: 820 m square at 5 cm, and what ReadPgm reads at most (with a header of up to
+  // kMaxHeaderBytes), so that /dev/zero or a huge file fails before memory runs out.
+  static constexpr std::size_t kMaxPixels = std::size_t{1} << 28;
+  static constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
+
+ private:
 
   static bool IsSpace(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
 
@@ -130,6 +142,18 @@ class PgmParser {
 
 // `yaml` is the map file naming the image, for the messages.
 PgmImage ReadPgm(const std::filesystem::path& path, const std::string& yaml) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(fmt::format("{}: not a regular file (a directory, device or FIFO; the image "
+                                 "of {})",
+                                 path.string(), yaml));
+  }
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > PgmParser::kMaxPixels + PgmParser::kMaxHeaderBytes) {
+    throw InputError(fmt::format("{}: {} bytes, beyond the {} pixels a map image may have (the "
+                                 "image of {})",
+                                 path.string(), size, PgmParser::kMaxPixels, yaml));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InputError(fmt::format("{}: cannot open file (the image of {})", path.string(), yaml));

@@ -49,7 +49,14 @@ bool LineReader::Refill() {
   std::memmove(buffer_.data(), buffer_.data() + begin_, end_ - begin_);
   end_ -= begin_;
   begin_ = 0;
-  if (end_ == buffer_.size()) buffer_.resize(2 * buffer_.size());
+  if (end_ == buffer_.size()) {
+    // A line this long is not a record (/dev/zero, a binary file): stop before memory runs out.
+    if (buffer_.size() >= kMaxLineBytes) {
+      throw InputError(fmt::format("{}:{}: a line longer than {} MiB (not a text file of records?)",
+                                   path_, line_number_ + 1, kMaxLineBytes >> 20));
+    }
+    buffer_.resize(2 * buffer_.size());
+  }
   const unsigned room = static_cast<unsigned>(buffer_.size() - end_);
   const int read = gzread(file_, buffer_.data() + end_, room);
   int code = Z_OK;

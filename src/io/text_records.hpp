@@ -17,9 +17,12 @@
 
 namespace slamkit::text {
 
+// The longest line a reader accepts: far beyond any record (a 1081-beam scan is ~10 KB).
+inline constexpr std::size_t kMaxLineBytes = std::size_t{64} << 20;
+
 // Physical lines of a plain or gzip-compressed file (zlib detects gzip by the magic bytes 1f 8b
 // and reads anything else as is). Throws InputError naming the file when it cannot be opened,
-// cannot be read, or ends in the middle of a gzip stream.
+// cannot be read, ends in the middle of a gzip stream, or has a line longer than kMaxLineBytes.
 class LineReader {
  public:
   explicit LineReader(const std::filesystem::path& path);

@@ -264,6 +264,13 @@ TEST_F(CarmenReader, AParamMaxRangeTheReadingsContradictIsDropped) {
   EXPECT_EQ(kept.no_return_beams, 2);
 }
 
+// Issue 8 item 5: a "log" without line ends (/dev/zero) grew the line buffer until memory ran
+// out; a line beyond 64 MiB is an input error.
+TEST_F(CarmenReader, ALineLongerThan64MiBIsAnInputError) {
+  const std::string message = testing::InputErrorOf([] { ReadCarmenLog("/dev/zero"); });
+  EXPECT_NE(message.find("/dev/zero:1: a line longer than 64 MiB"), std::string::npos) << message;
+}
+
 TEST_F(CarmenReader, MaxRangeOptionOverridesTheLog) {
   CarmenReadOptions options;
   options.max_range_m = 25.0;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -140,6 +142,23 @@ TEST_F(MapReader, ImageThatIsADirectoryOrHasANulByteNamesTheYaml) {
   }
   const auto yaml = WriteFile("map.yaml", "image: sub\nresolution: 0.1\norigin: [0, 0, 0]\n");
   EXPECT_TRUE(Contains(InputErrorOf([&] { ReadOccupancyImage(yaml); }), "is a directory"));
+}
+
+// Issue 8 item 5: an image of /dev/zero was read until memory ran out, a FIFO hung. Only a
+// regular file, of at most a map's largest size, is read.
+TEST_F(MapReader, DevicesFifosAndHugeImagesFailBeforeReading) {
+  const std::string fifo = (dir_ / "fifo.pgm").string();
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& image : {std::string("/dev/zero"), fifo}) {
+    const auto yaml =
+        WriteFile("map.yaml", "image: " + image + "\nresolution: 0.1\norigin: [0, 0, 0]\n");
+    const std::string message = InputErrorOf([&] { ReadOccupancyImage(yaml); });
+    EXPECT_TRUE(Contains(message, "not a regular file")) << image << ": " << message;
+    EXPECT_TRUE(Contains(message, "map.yaml")) << message;
+  }
+  // A header promising more pixels than a map may have is refused before the pixels are read.
+  const auto yaml = WriteMap(Pgm("P5\n20000 20000\n255\n"));
+  EXPECT_TRUE(Contains(InputErrorOf([&] { ReadOccupancyImage(yaml); }), "20000 × 20000 pixels"));
 }
 
 // Issue 8 item 19: yaml-cpp's nesting limit was reported as "YAML syntax error: bad file".

@@ -239,6 +239,12 @@ TEST_F(ScenarioConfigFile, DegreesTooLargeForRadiansNameFileLineAndKey) {
   EXPECT_DOUBLE_EQ(config.scenario.vehicle.car_like.sigma_steer_rad, DegToRad(1e300));
 }
 
+// Issue 8 item 5: yaml-cpp reads a whole stream; /dev/zero never ends.
+TEST_F(ScenarioConfigFile, ADeviceIsNotAConfigFile) {
+  const std::string message = testing::InputErrorOf([] { LoadScenario("/dev/zero"); });
+  EXPECT_NE(message.find("/dev/zero: not a regular file"), std::string::npos) << message;
+}
+
 TEST_F(ScenarioConfigFile, FileProblemsNameTheFile) {
   EXPECT_TRUE(Contains(ErrorOf("route: {waypoints_m: [[0, 0], [1, 1]\n"), "bad.yaml:"));
   try {
