@@ -120,11 +120,7 @@ void AddOdometryMetrics(const GridEvaluation& e, nlohmann::json& metrics) {
   }
 }
 
-int RunGridCommand(const GridOptions& o) {
-  // Every parallel loop of the filter runs in TBB's pool, which this caps.
-  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
-                                    static_cast<std::size_t>(o.threads > 0 ? o.threads
-                                                                           : UsableCpuCount()));
+CarmenLog ReadGridLog(const GridOptions& o) {
   CarmenReadOptions read_options;
   read_options.skip_bad_lines = o.skip_bad_lines;
   read_options.odometry_from_scan_fields = !o.interpolate_odometry;
@@ -135,39 +131,33 @@ int RunGridCommand(const GridOptions& o) {
   }
   if (log.skipped_lines > 0) PrintStderr("{}: skipped {} bad lines\n", o.log, log.skipped_lines);
   for (const std::string& note : log.notes) PrintStderr("{}: {}\n", o.log, note);
-  std::vector<PoseRelation> relations;
-  if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
-  const std::optional<Trajectory> reference = LoadReference(o, log);
-  OutputDir output(o.out);
+  return log;
+}
 
+// The filter's parameters (the options, or --config with --seed and --particles over it), and
+// the frame: the log's odometry frame with --frame odometry, else `odometry` is moved to start at
+// the origin, where the filter starts.
+RbpfGridSlamParams EffectiveParams(const GridOptions& o, Trajectory* odometry) {
   RbpfGridSlamParams params = o.params;
   if (!o.config.empty()) {
     params = LoadGridConfig(o.config);
     if (o.seed_given) params.seed = o.params.seed;
     if (o.particles_given) params.particles = o.params.particles;
   }
-  Trajectory odometry = OdometryTrajectory(log);
   if (o.frame_odometry) {
-    params.initial_pose = odometry.front().pose;
+    params.initial_pose = odometry->front().pose;
   } else {
-    const Pose2 to_origin = odometry.front().pose.Inverse();
-    for (StampedPose& p : odometry) p.pose = to_origin.Compose(p.pose);
+    const Pose2 to_origin = odometry->front().pose.Inverse();
+    for (StampedPose& p : *odometry) p.pose = to_origin.Compose(p.pose);
   }
-  auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
-  const GridRunResult result =
-      RunGridSlam(log, params, [progress](int done, int) { progress->Update(done); });
-  const GridEvaluation eval = Evaluate(o, result, odometry, std::move(relations), reference);
+  return params;
+}
 
-  const std::filesystem::path& dir = output.staging();
-  const int moved = WriteGridOutputs(dir, result, odometry, std::filesystem::path(o.log).filename().string());
-  if (moved > 0) {
-    PrintStderr("warning: {}: its scan timestamps cannot pair poses ({}): pair by index; "
-                "trajectory.tum's {} such times were pushed forward in 1 µs steps for TUM "
-                "readers, trajectory.txt keeps the log's\n",
-                o.log, TimestampProblem(result.trajectory), moved);
-  }
-  nlohmann::json metrics = GridMetrics(result, params, eval.relations ? &*eval.relations : nullptr,
-                                       eval.reference ? &*eval.reference : nullptr, PeakRssMib());
+nlohmann::json RunMetrics(const GridOptions& o, const CarmenLog& log, const GridRunResult& result,
+                          const RbpfGridSlamParams& params, const GridEvaluation& eval) {
+  nlohmann::json metrics =
+      GridMetrics(result, params, eval.relations ? &*eval.relations : nullptr,
+                  eval.reference ? &*eval.reference : nullptr, PeakRssMib());
   if (!o.reference.empty()) {
     metrics["reference"] = o.reference;
     metrics["pair_by"] = o.pair_by == PairBy::kIndex ? "index" : "time";
@@ -181,23 +171,53 @@ int RunGridCommand(const GridOptions& o) {
   metrics["reader_notes"] = log.notes;
   AddOdometryMetrics(eval, metrics);
   if (!eval.error.empty()) metrics["evaluation_error"] = eval.error;
-  WriteJson(dir / "metrics.json", metrics);
+  return metrics;
+}
 
-  PrintGridRun(o.log, result, o.params.particles);
-  if (eval.relations) {
-    fmt::print("  {:<28}{:>12}\n", "relations: translation [m]",
-               fmt::format("{:.4f} ± {:.4f}", eval.relations->trans_mean_m,
-                           eval.relations->trans_std_m));
-    fmt::print("  {:<28}{:>12}\n", "relations: rotation [deg]",
-               fmt::format("{:.3f} ± {:.3f}", eval.relations->rot_mean_deg,
-                           eval.relations->rot_std_deg));
-    if (eval.relations->skipped > 0) {
-      PrintStderr("warning: {} relations lie outside the run's time span and were skipped\n",
-                  eval.relations->skipped);
-    }
+void PrintRelations(const RelationErrorStats& r) {
+  fmt::print("  {:<28}{:>12}\n", "relations: translation [m]",
+             fmt::format("{:.4f} ± {:.4f}", r.trans_mean_m, r.trans_std_m));
+  fmt::print("  {:<28}{:>12}\n", "relations: rotation [deg]",
+             fmt::format("{:.3f} ± {:.3f}", r.rot_mean_deg, r.rot_std_deg));
+  if (r.skipped > 0) {
+    PrintStderr("warning: {} relations lie outside the run's time span and were skipped\n",
+                r.skipped);
   }
+}
+
+int RunGridCommand(const GridOptions& o) {
+  // Every parallel loop of the filter runs in TBB's pool, which this caps.
+  const tbb::global_control threads(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(o.threads > 0 ? o.threads
+                                                                           : UsableCpuCount()));
+  const CarmenLog log = ReadGridLog(o);
+  std::vector<PoseRelation> relations;
+  if (!o.relations.empty()) relations = ReadRelations(o.relations);  // fail before the long run
+  const std::optional<Trajectory> reference = LoadReference(o, log);
+  Trajectory odometry = OdometryTrajectory(log);
+  const RbpfGridSlamParams params = EffectiveParams(o, &odometry);
+  OutputDir output(o.out);
+
+  auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
+  const GridRunResult result =
+      RunGridSlam(log, params, [progress](int done, int) { progress->Update(done); });
+  const GridEvaluation eval = Evaluate(o, result, odometry, std::move(relations), reference);
+
+  const std::filesystem::path& dir = output.staging();
+  const std::string title = std::filesystem::path(o.log).filename().string();
+  if (const int moved = WriteGridOutputs(dir, result, odometry, title); moved > 0) {
+    PrintStderr("warning: {}: its scan timestamps cannot pair poses ({}): pair by index; "
+                "trajectory.tum's {} such times were pushed forward in 1 µs steps for TUM "
+                "readers, trajectory.txt keeps the log's\n",
+                o.log, TimestampProblem(result.trajectory), moved);
+  }
+  WriteJson(dir / "metrics.json", RunMetrics(o, log, result, params, eval));
+  PrintGridRun(o.log, result, params.particles);
+  if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
-  if (eval.reference) PrintComparison(o.reference_from_log ? "log poses" : "reference", *eval.reference);
+  if (eval.reference) {
+    PrintComparison(o.reference_from_log ? "log poses" : "reference", *eval.reference);
+  }
   fmt::print("wrote {}\n", o.out);
   if (!eval.error.empty()) {
     PrintStderr("error: the evaluation failed ({}); the run's outputs are kept in {}\n",

@@ -118,7 +118,9 @@ pid_t Spawn(const SuiteJob& job) {
   pid_t pid = 0;
   const int rc = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error(fmt::format("cannot start a grid run: {}", std::strerror(rc)));
+  if (rc != 0) {
+    throw std::runtime_error(fmt::format("cannot start a grid run: {}", std::strerror(rc)));
+  }
   return pid;
 }
 

@@ -65,7 +65,8 @@ std::optional<Pose2> InterpolatePoseAt(const Trajectory& trajectory, double t_s,
   const StampedPose& a = *std::prev(after);
   const StampedPose& b = *after;
   const double s = (t_s - a.t_s) / (b.t_s - a.t_s);  // b.t_s > t_s > a.t_s: no division by 0
-  const Eigen::Vector2d p = a.pose.translation() + s * (b.pose.translation() - a.pose.translation());
+  const Eigen::Vector2d p =
+      a.pose.translation() + s * (b.pose.translation() - a.pose.translation());
   const double heading = a.pose.theta() + s * WrapAngle(b.pose.theta() - a.pose.theta());
   return Pose2(p.x(), p.y(), WrapAngle(heading));
 }

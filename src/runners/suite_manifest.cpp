@@ -32,7 +32,9 @@ std::filesystem::path ExistingFile(const Section& s, const std::string& key,
 SuiteLog ReadLog(const Section& s, const std::filesystem::path& root) {
   SuiteLog log;
   s.Read("name", &log.name);
-  if (log.name.empty() || log.name.find_first_of("/\\") != std::string::npos || log.name[0] == '.') {
+  const bool bad_name = log.name.empty() || log.name[0] == '.' ||
+                        log.name.find_first_of("/\\") != std::string::npos;
+  if (bad_name) {
     s.Fail("name", "required: a non-empty name without '/', not starting with '.'");
   }
   log.log = ExistingFile(s, "log", root);

@@ -61,7 +61,8 @@ std::vector<std::pair<std::string, std::vector<const SuiteRunRecord*>>> ByLog(
     const std::vector<SuiteRunRecord>& runs, std::vector<int>* failed) {
   std::vector<std::pair<std::string, std::vector<const SuiteRunRecord*>>> logs;
   for (const SuiteRunRecord& r : runs) {
-    auto it = std::find_if(logs.begin(), logs.end(), [&](const auto& l) { return l.first == r.log; });
+    auto it = std::find_if(logs.begin(), logs.end(),
+                           [&](const auto& l) { return l.first == r.log; });
     if (it == logs.end()) {
       logs.push_back({r.log, {}});
       failed->push_back(0);
