@@ -16,6 +16,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,8 @@ struct SuiteOptions {
   int particles = 0;  // 0: the grid command's default
   int max_scans = 0;
   int jobs = 0;       // 0: UsableCpuCount
+  std::string config;  // the grid filter's parameters, for every run
+  std::string logs;    // comma-separated names: only these logs (empty: all)
   std::string out;
 };
 
@@ -94,6 +97,7 @@ std::vector<std::string> GridArgs(const SuiteOptions& o, const SuiteLog& log, st
   std::vector<std::string> a = {"slamkit", "grid", "--log", log.log.string(), "--seed",
                                 std::to_string(seed), "--threads", std::to_string(threads),
                                 "--out", out.string()};
+  if (!o.config.empty()) a.insert(a.end(), {"--config", fs::absolute(o.config).string()});
   if (o.particles > 0) a.insert(a.end(), {"--particles", std::to_string(o.particles)});
   if (o.max_scans > 0) a.insert(a.end(), {"--max-scans", std::to_string(o.max_scans)});
   if (!log.relations.empty()) a.insert(a.end(), {"--relations", log.relations.string()});
@@ -231,20 +235,43 @@ void WriteContactSheet(const fs::path& dir, const std::vector<SuiteJob>& jobs,
   WriteMapContactSheet(dir / "maps.png", sheet);
 }
 
+// The manifest's logs named in `names` ("a,b"; empty: all of them), in the manifest's order.
+std::vector<const SuiteLog*> SelectLogs(const SuiteManifest& manifest, const std::string& names,
+                                        const std::string& manifest_path) {
+  std::vector<const SuiteLog*> out;
+  std::set<std::string> wanted;
+  for (std::size_t start = 0; !names.empty() && start <= names.size();) {
+    const std::size_t comma = std::min(names.find(',', start), names.size());
+    wanted.insert(names.substr(start, comma - start));
+    start = comma + 1;
+  }
+  std::string known;
+  for (const SuiteLog& log : manifest.logs) {
+    known += (known.empty() ? "" : ", ") + log.name;
+    if (names.empty() || wanted.erase(log.name) > 0) out.push_back(&log);
+  }
+  if (!wanted.empty()) {
+    throw InputError(fmt::format("--logs: no log '{}' in {} (its logs: {})", *wanted.begin(),
+                                 manifest_path, known));
+  }
+  return out;
+}
+
 int RunSuiteCommand(const SuiteOptions& o) {
   const SuiteManifest manifest = LoadSuiteManifest(o.manifest, o.root);
+  const std::vector<const SuiteLog*> logs = SelectLogs(manifest, o.logs, o.manifest);
   const std::vector<std::uint64_t> seeds = ParseSeeds(o.seeds);
   OutputDir output(o.out);
   const fs::path& dir = output.staging();
   const int parallel = o.jobs > 0 ? o.jobs : UsableCpuCount();
   const int threads = std::max(1, UsableCpuCount() / parallel);
   std::vector<SuiteJob> jobs;
-  for (const SuiteLog& log : manifest.logs) {
-    fs::create_directories(dir / "runs" / log.name);
+  for (const SuiteLog* log : logs) {
+    fs::create_directories(dir / "runs" / log->name);
     for (std::uint64_t seed : seeds) {
-      SuiteJob job{&log, seed, dir / "runs" / log.name / fmt::format("seed_{}", seed),
-                   dir / "runs" / log.name / fmt::format("seed_{}.txt", seed), {}};
-      job.args = GridArgs(o, log, seed, job.out, threads);
+      SuiteJob job{log, seed, dir / "runs" / log->name / fmt::format("seed_{}", seed),
+                   dir / "runs" / log->name / fmt::format("seed_{}.txt", seed), {}};
+      job.args = GridArgs(o, *log, seed, job.out, threads);
       jobs.push_back(std::move(job));
     }
   }
@@ -256,7 +283,7 @@ int RunSuiteCommand(const SuiteOptions& o) {
   int failed = 0;
   for (const SuiteRunRecord& r : records) failed += r.failure.empty() ? 0 : 1;
   fmt::print("{} runs ({} logs x {} seeds), {} failed\nwrote {}\n", records.size(),
-             manifest.logs.size(), seeds.size(), failed, o.out);
+             logs.size(), seeds.size(), failed, o.out);
   return failed > 0 ? 1 : 0;
 }
 
@@ -273,6 +300,10 @@ void RegisterSuite(CLI::App& app, int& exit_code) {
   cmd->add_option("--seeds", o->seeds, "seeds: 1-5, 1,3,7 or 2")->capture_default_str();
   cmd->add_option("--particles", o->particles, "particles (default: the grid command's)")
       ->check(CLI::Range(1, 10000));
+  cmd->add_option("--config", o->config, "the grid filter's parameters for every run "
+                                         "(configs/grid.yaml; see slamkit grid --config)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--logs", o->logs, "only these logs of the manifest: NAME[,NAME...]");
   cmd->add_option("--max-scans", o->max_scans, "use only each log's first N scans (0: all)")
       ->check(NonNegativeNumber());
   cmd->add_option("--jobs", o->jobs, "runs at once (0: the CPUs this process may use)")

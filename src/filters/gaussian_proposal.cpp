@@ -53,6 +53,18 @@ ProposalDistribution GaussianProposal(const GridMapView& grid, const ScanPoints&
   return out;
 }
 
+void KeepConstrainedPart(const MatchConstraints& constraints, const Pose2& match,
+                         ProposalDistribution* proposal) {
+  if (constraints.unconstrained == 0) return;
+  const Eigen::Matrix3d keep = constraints.KeepInWorld(match.theta());
+  const Eigen::Vector3d offset =
+      keep * Eigen::Vector3d(proposal->mean.x() - match.x(), proposal->mean.y() - match.y(),
+                             WrapAngle(proposal->mean.theta() - match.theta()));
+  proposal->mean = Pose2(match.x() + offset.x(), match.y() + offset.y(),
+                         WrapAngle(match.theta() + offset.z()));
+  proposal->covariance = keep * proposal->covariance * keep.transpose();
+}
+
 Pose2 SampleProposal(const ProposalDistribution& proposal, Rng& rng) {
   // A tiny jitter keeps the factor defined when every sample but one weighs nothing.
   const Eigen::Matrix3d c = proposal.covariance + 1e-12 * Eigen::Matrix3d::Identity();

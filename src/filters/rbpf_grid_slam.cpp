@@ -113,9 +113,10 @@ void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
       p.pose = predicted;
       log_likelihood = EvaluatePose(map, points, predicted, params_.matcher).log_likelihood;
     } else if (params_.proposal == ProposalScheme::kGaussian) {
-      const ProposalDistribution proposal =
+      ProposalDistribution proposal =
           GaussianProposal(map, points, match.pose, previous, delta, params_.motion,
                            params_.matcher, params_.gaussian);
+      KeepConstrainedPart(match.constraints, match.pose, &proposal);
       p.pose = SampleProposal(proposal, rng);
       log_likelihood = proposal.log_normaliser;
     } else {

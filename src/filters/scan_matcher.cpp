@@ -9,14 +9,28 @@ namespace slamkit {
 
 ScanPoints PrepareScan(const LaserScan& scan, double usable_range_m,
                        const ScanMatcherParams& params) {
-  ScanPoints points;
-  const int stride = std::max(1, params.beam_stride);
-  for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); i += stride) {
+  ScanPoints all;
+  std::vector<int> beams;
+  for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
     if (!scan.IsReturn(i) || scan.ranges_m[i] > usable_range_m) continue;
     const double a = scan.BeamAngle(i);
     const Eigen::Vector2d dir_laser(std::cos(a), std::sin(a));
-    points.ends.push_back(scan.laser_offset.TransformFrom(scan.ranges_m[i] * dir_laser));
-    points.directions.push_back(scan.laser_offset.rotation() * dir_laser);
+    all.ends.push_back(scan.laser_offset.TransformFrom(scan.ranges_m[i] * dir_laser));
+    all.directions.push_back(scan.laser_offset.rotation() * dir_laser);
+    beams.push_back(i);
+  }
+  // Normals come from every return, so that a stride does not thin out their neighbours.
+  all.normals = params.constraints.min_information_ratio > 0.0
+                    ? EstimateNormals(all.ends, params.constraints)
+                    : std::vector<Eigen::Vector2d>(all.ends.size(), Eigen::Vector2d::Zero());
+  const int stride = std::max(1, params.beam_stride);
+  if (stride == 1) return all;
+  ScanPoints points;
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    if (beams[k] % stride != 0) continue;
+    points.ends.push_back(all.ends[k]);
+    points.directions.push_back(all.directions[k]);
+    points.normals.push_back(all.normals[k]);
   }
   return points;
 }
@@ -98,7 +112,9 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
 
 template <class Cells>
 MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanPoints& points,
-                      const Pose2& pose, const ScanMatcherParams& params) {
+                      const Pose2& pose, const ScanMatcherParams& params,
+                      std::vector<std::uint8_t>* hits) {
+  if (hits != nullptr) hits->assign(points.ends.size(), 0);
   MatchQuality q;
   const double inv_score = 1.0 / (params.score_sigma_m * params.score_sigma_m);
   const double inv_like = 0.5 / (params.likelihood_sigma_m * params.likelihood_sigma_m);
@@ -110,6 +126,7 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
     const double d_sq = NearestHitDistanceSq(grid, cells, R * points.ends[i] + t,
                                              R * points.directions[i], params.search_cells);
     if (std::isfinite(d_sq)) {
+      if (hits != nullptr) (*hits)[i] = 1;
       ++q.matched;
       q.score += std::exp(-d_sq * inv_score);
       q.log_likelihood -= std::min(d_sq, miss_sq) * inv_like;
@@ -123,9 +140,11 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
 }  // namespace
 
 MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
-                          const ScanMatcherParams& params) {
-  if (grid.second == nullptr) return Evaluate(grid.map, MapOnly{grid.map}, points, pose, params);
-  return Evaluate(grid.map, Layered{grid}, points, pose, params);
+                          const ScanMatcherParams& params, std::vector<std::uint8_t>* hits) {
+  if (grid.second == nullptr) {
+    return Evaluate(grid.map, MapOnly{grid.map}, points, pose, params, hits);
+  }
+  return Evaluate(grid.map, Layered{grid}, points, pose, params, hits);
 }
 
 namespace {
@@ -146,7 +165,7 @@ double PriorPenalty(const Pose2& initial, const Pose2& pose, const ScanMatcherPa
 
 MatchResult HillClimb(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                       const ScanMatcherParams& params) {
-  MatchResult best{initial, EvaluatePose(grid, points, initial, params), false};
+  MatchResult best{initial, EvaluatePose(grid, points, initial, params), false, {}};
   double best_objective = best.quality.score;
   double lin = params.linear_step_m, ang = params.angular_step_rad;
   int refinements = 0;
@@ -181,8 +200,29 @@ ScanPoints EveryNth(const ScanPoints& points, int n) {
   for (std::size_t i = 0; i < points.ends.size(); i += std::max(1, n)) {
     out.ends.push_back(points.ends[i]);
     out.directions.push_back(points.directions[i]);
+    if (i < points.normals.size()) out.normals.push_back(points.normals[i]);
   }
   return out;
+}
+
+// SPEC S4 refined by Zhang, Kaess and Singh 2016 (solution remapping): the directions that the
+// beams matched at `best` leave unconstrained go back to the guess, and the match is scored again
+// where it now lies.
+void KeepGuessWhereUnconstrained(const GridMapView& grid, const ScanPoints& points,
+                                 const Pose2& initial, const ScanMatcherParams& params,
+                                 MatchResult* best) {
+  // Points built without normals (by hand) say nothing about their constraints.
+  if (params.constraints.min_information_ratio <= 0.0 ||
+      points.normals.size() != points.ends.size()) {
+    return;
+  }
+  std::vector<std::uint8_t> hits;
+  EvaluatePose(grid, points, best->pose, params, &hits);
+  const MatchInformation info = ComputeMatchInformation(points.ends, points.normals, hits);
+  best->constraints = FindConstraints(info, params.constraints);
+  if (best->constraints.unconstrained == 0) return;
+  best->pose = KeepGuessAlong(initial, best->pose, best->constraints);
+  best->quality = EvaluatePose(grid, points, best->pose, params);
 }
 
 }  // namespace
@@ -198,6 +238,7 @@ MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const P
           ? HillClimb(grid, EveryNth(points, params.coarse_beam_stride), initial, coarse).pose
           : initial;
   MatchResult best = HillClimb(grid, points, start, params);
+  KeepGuessWhereUnconstrained(grid, points, initial, params, &best);
   best.accepted = !points.ends.empty() &&
                   best.quality.score >= params.min_score_fraction * double(points.ends.size());
   return best;

@@ -52,13 +52,19 @@ void ReadMatcher(const Section& s, ScanMatcherParams* m) {
   s.Read("coarse_score_sigma_m", &m->coarse_score_sigma_m, Bound::kPositive);
   s.Read("coarse_beam_stride", &m->coarse_beam_stride, 1);
   s.Read("coarse_refinements", &m->coarse_refinements, 0);
+  MatchConstraintParams& c = m->constraints;
+  s.Read("min_information_ratio", &c.min_information_ratio, Bound::kNonNegative);
+  s.Read("normal_neighbours", &c.normal_neighbours, 1);
+  s.Read("normal_radius_m", &c.normal_radius_m, Bound::kPositive);
+  s.Read("max_normal_spread", &c.max_normal_spread, Bound::kNonNegative);
 }
 
 const std::vector<std::string> kMatcherKeys = {
     "beam_stride", "search_cells", "score_sigma_m", "likelihood_sigma_m", "linear_step_m",
     "angular_step_rad", "refinements", "min_score_fraction", "prior_sigma_xy_m",
     "prior_sigma_theta_rad", "coarse_pass", "coarse_search_cells", "coarse_score_sigma_m",
-    "coarse_beam_stride", "coarse_refinements"};
+    "coarse_beam_stride", "coarse_refinements", "min_information_ratio", "normal_neighbours",
+    "normal_radius_m", "max_normal_spread"};
 
 nlohmann::json MatcherJson(const ScanMatcherParams& m) {
   return {{"beam_stride", m.beam_stride}, {"search_cells", m.search_cells},
@@ -70,7 +76,11 @@ nlohmann::json MatcherJson(const ScanMatcherParams& m) {
           {"coarse_search_cells", m.coarse_search_cells},
           {"coarse_score_sigma_m", m.coarse_score_sigma_m},
           {"coarse_beam_stride", m.coarse_beam_stride},
-          {"coarse_refinements", m.coarse_refinements}};
+          {"coarse_refinements", m.coarse_refinements},
+          {"min_information_ratio", m.constraints.min_information_ratio},
+          {"normal_neighbours", m.constraints.normal_neighbours},
+          {"normal_radius_m", m.constraints.normal_radius_m},
+          {"max_normal_spread", m.constraints.max_normal_spread}};
 }
 
 void ReadGrid(const Section& s, OccupancyGridParams* g) {

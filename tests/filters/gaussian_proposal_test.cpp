@@ -77,5 +77,33 @@ TEST_F(CorridorProposalTest, DrawsFollowTheFittedGaussian) {
   }
 }
 
+// Where the match leaves the corridor's axis unconstrained, the proposal neither moves its mean
+// along the axis nor spreads along it (the motion sample already carries that spread); across
+// it and in heading it is the fitted Gaussian unchanged.
+TEST_F(CorridorProposalTest, KeepsOnlyTheConstrainedPartWhereTheMatchSaysSo) {
+  const Pose2 match(5.0, 0.0, 0.3);  // the robot's x at 0.3 rad in the world
+  ProposalDistribution proposal = ProposalAt(match);
+  const ProposalDistribution fitted = proposal;
+  MatchConstraints c;
+  c.keep = Eigen::Vector3d(0.0, 1.0, 1.0).asDiagonal();
+  c.unconstrained = 1;
+  KeepConstrainedPart(c, match, &proposal);
+  const Eigen::Vector3d along(std::cos(0.3), std::sin(0.3), 0.0);
+  const Eigen::Vector3d across(-std::sin(0.3), std::cos(0.3), 0.0);
+  const Eigen::Vector3d moved(proposal.mean.x() - match.x(), proposal.mean.y() - match.y(),
+                              proposal.mean.theta() - match.theta());
+  const Eigen::Vector3d fitted_moved(fitted.mean.x() - match.x(), fitted.mean.y() - match.y(),
+                                     fitted.mean.theta() - match.theta());
+  EXPECT_NEAR(along.dot(moved), 0.0, 1e-12);
+  EXPECT_NEAR(across.dot(moved), across.dot(fitted_moved), 1e-12);
+  EXPECT_NEAR(moved.z(), fitted_moved.z(), 1e-12);
+  EXPECT_NEAR(along.dot(proposal.covariance * along), 0.0, 1e-15);
+  EXPECT_GT(along.dot(fitted.covariance * along), 1e-6) << "nothing to remove: the test is moot";
+  EXPECT_NEAR(across.dot(proposal.covariance * across), across.dot(fitted.covariance * across),
+              1e-15);
+  EXPECT_NEAR(proposal.covariance(2, 2), fitted.covariance(2, 2), 1e-15);
+  EXPECT_EQ(proposal.log_normaliser, fitted.log_normaliser);
+}
+
 }  // namespace
 }  // namespace slamkit

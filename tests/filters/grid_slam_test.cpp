@@ -19,15 +19,18 @@ using testing::RoomScan;
 
 // A robot driving a loop in the room with biased odometry: the filter's path must stay close to
 // the truth while raw odometry drifts, and the same seed must give the same path for any
-// thread count.
-std::vector<LaserScan> LoopLog(std::vector<Pose2>* truth, double heading_drift_rad = 0.0) {
+// thread count. `reverse` drives the same loop backwards, the robot (and its laser) facing the
+// way it came from.
+std::vector<LaserScan> LoopLog(std::vector<Pose2>* truth, double heading_drift_rad = 0.0,
+                               bool reverse = false) {
   std::vector<LaserScan> log;
   Pose2 odo;
-  Pose2 pose(-5, -3, 0);
+  Pose2 pose(-5, -3, reverse ? M_PI : 0.0);
   const Pose2 start = pose;
+  const double sign = reverse ? -1.0 : 1.0;
   for (int k = 0; k < 136; ++k) {
     const double turn = (k % 34 >= 24) ? M_PI / 20 : 0.0;  // straight 24 steps, turn 90° in 10
-    const Pose2 step(turn > 0 ? 0.05 : 0.25, 0.0, turn);
+    const Pose2 step(sign * (turn > 0 ? 0.05 : 0.25), 0.0, turn);
     pose = pose.Compose(step);
     // Biased odometry.
     odo = odo.Compose(Pose2(step.x() * 1.03, 0.0, step.theta() * 1.02 + heading_drift_rad));
@@ -62,25 +65,45 @@ double MaxPositionError(const Trajectory& estimate, const std::vector<Pose2>& tr
   return worst;
 }
 
-TEST(RbpfGridSlam, TracksALoopBetterThanOdometryAndIsDeterministic) {
-  std::vector<Pose2> truth;
-  const std::vector<LaserScan> log = LoopLog(&truth);
+// The largest position error of the filter's path and of the odometry along the loop.
+std::pair<double, double> LoopErrors(const std::vector<LaserScan>& log,
+                                     const std::vector<Pose2>& truth, const Trajectory& path) {
   // The log's first scan is taken after the first step: express truth relative to that pose.
-  const Trajectory one = RunFilter(log, 1);
-  ASSERT_EQ(one.size(), log.size());
   double filter_err = 0.0, odo_err = 0.0;
   for (std::size_t k = 0; k < log.size(); ++k) {
     const Pose2 true_rel = truth.front().Between(truth[k]);
     const Pose2 odo_rel = log.front().odometry.Between(log[k].odometry);
-    filter_err = std::max(filter_err, (one[k].pose.translation() - true_rel.translation()).norm());
+    filter_err = std::max(filter_err, (path[k].pose.translation() - true_rel.translation()).norm());
     odo_err = std::max(odo_err, (odo_rel.translation() - true_rel.translation()).norm());
   }
+  return {filter_err, odo_err};
+}
+
+TEST(RbpfGridSlam, TracksALoopBetterThanOdometryAndIsDeterministic) {
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = LoopLog(&truth);
+  const Trajectory one = RunFilter(log, 1);
+  ASSERT_EQ(one.size(), log.size());
+  const auto [filter_err, odo_err] = LoopErrors(log, truth, one);
   EXPECT_LT(filter_err, 0.1);
   EXPECT_GT(odo_err, 3.0 * filter_err);
   const Trajectory two = RunFilter(log, 2);
   for (std::size_t k = 0; k < log.size(); ++k) {
     ASSERT_EQ(one[k].pose.vector(), two[k].pose.vector()) << k;
   }
+}
+
+// Driving backwards: the odometry increments point backwards (negative x in the robot frame),
+// the motion noise scales with their size whatever their sign, and the updates fire on the
+// distance driven; the filter must track the reversed loop as well as the forward one.
+TEST(RbpfGridSlam, TracksALoopDrivenBackwards) {
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = LoopLog(&truth, 0.0, /*reverse=*/true);
+  const Trajectory path = RunFilter(log, 1);
+  ASSERT_EQ(path.size(), log.size());
+  const auto [filter_err, odo_err] = LoopErrors(log, truth, path);
+  EXPECT_LT(filter_err, 0.1);
+  EXPECT_GT(odo_err, 3.0 * filter_err);
 }
 
 // Mean heading error of the step from each scan to the next (relative pose error on

@@ -90,31 +90,71 @@ TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
 }
 
 // A corridor whose far part is not mapped yet: nothing but the mapped part's end tells where the
-// scan lies along the corridor, and without the prior the climb drifts along it (by 4 cm here).
-// The prior holds the guess along the corridor and still reduces the sideways offset, which the
-// walls constrain.
-TEST(ScanMatcher, PriorHoldsTheGuessAlongAHalfMappedCorridor) {
-  const FloorPlan corridor{{{{-2.0, -1.025}, {20.0, -1.025}}, {{-2.0, 1.025}, {20.0, 1.025}}}};
-  auto scan_at = [&](const Pose2& pose) {
+// scan lies along the corridor, and a plain climb drifts along it toward the mapped part, where
+// more beams find a wall (by 4 cm here).
+struct HalfMappedCorridor {
+  FloorPlan plan{{{{-2.0, -1.025}, {20.0, -1.025}}, {{-2.0, 1.025}, {20.0, 1.025}}}};
+  OccupancyGrid grid;
+  Pose2 truth{0.6, 0.0, 0.0};
+  Pose2 guess{0.6, 0.04, 0.0};  // right along the corridor, 4 cm off across it
+
+  HalfMappedCorridor() {
+    ScanInsertionParams insertion;
+    insertion.usable_range_m = 4.0;  // maps x up to about 4 m only
+    InsertScan(grid, Pose2(), ScanAt(Pose2()), insertion);
+  }
+  LaserScan ScanAt(const Pose2& pose) const {
     Rng rng(1);
     LaserSimParams laser;
     laser.sigma_range_m = 0.0;
-    return SimulateScan(corridor, pose, laser, rng);
-  };
-  OccupancyGrid grid;
-  ScanInsertionParams insertion;
-  insertion.usable_range_m = 4.0;  // maps x up to about 4 m only
-  InsertScan(grid, Pose2(), scan_at(Pose2()), insertion);
-  const Pose2 truth(0.6, 0.0, 0.0);
+    return SimulateScan(plan, pose, laser, rng);
+  }
+  MatchResult Match(const ScanMatcherParams& params) const {
+    return MatchScan(grid, PrepareScan(ScanAt(truth), 8.0, params), guess, params);
+  }
+};
+
+// The prior holds the guess along the corridor and still reduces the sideways offset, which the
+// walls constrain.
+TEST(ScanMatcher, PriorHoldsTheGuessAlongAHalfMappedCorridor) {
+  const HalfMappedCorridor corridor;
   ScanMatcherParams params = TrackingMatcherParams();
-  const ScanPoints points = PrepareScan(scan_at(truth), 8.0, params);
-  const Pose2 guess(0.6, 0.04, 0.0);
-  const MatchResult held = MatchScan(grid, points, guess, params);
-  EXPECT_NEAR(held.pose.x(), truth.x(), 0.01);
-  EXPECT_LT(std::abs(held.pose.y() - truth.y()), 0.5 * std::abs(guess.y() - truth.y()));
+  params.constraints.min_information_ratio = 0.0;
+  const MatchResult held = corridor.Match(params);
+  EXPECT_NEAR(held.pose.x(), corridor.truth.x(), 0.01);
+  EXPECT_LT(std::abs(held.pose.y()), 0.5 * std::abs(corridor.guess.y()));
   params.prior_sigma_xy_m = 0.0;
-  const MatchResult slid = MatchScan(grid, points, guess, params);
-  EXPECT_GT(std::abs(slid.pose.x() - truth.x()), 0.03) << "no drift to hold: the test is moot";
+  const MatchResult slid = corridor.Match(params);
+  EXPECT_GT(std::abs(slid.pose.x() - corridor.truth.x()), 0.03) << "no drift: the test is moot";
+}
+
+// Without a prior, the constraint analysis finds the corridor's axis unconstrained and keeps the
+// guess along it, while the match still corrects the offset across it.
+TEST(ScanMatcher, KeepsTheGuessAlongAnUnconstrainedCorridor) {
+  const HalfMappedCorridor corridor;
+  ScanMatcherParams params;
+  const MatchResult held = corridor.Match(params);
+  EXPECT_EQ(held.constraints.unconstrained, 1);
+  EXPECT_NEAR(held.pose.x(), corridor.truth.x(), 0.005);
+  EXPECT_LT(std::abs(held.pose.y()), 0.5 * std::abs(corridor.guess.y()));
+  params.constraints.min_information_ratio = 0.0;
+  const MatchResult slid = corridor.Match(params);
+  EXPECT_GT(std::abs(slid.pose.x() - corridor.truth.x()), 0.03) << "no drift: the test is moot";
+}
+
+// In the room every direction is constrained: the analysis changes nothing.
+TEST(ScanMatcher, ConstraintAnalysisLeavesAWellConstrainedMatchAlone) {
+  const OccupancyGrid grid = RoomMap();
+  ScanMatcherParams params;
+  ScanMatcherParams off = params;
+  off.constraints.min_information_ratio = 0.0;
+  for (const Pose2& truth : {Pose2(0.5, 0.3, 0.2), Pose2(-2.0, -1.0, -1.0)}) {
+    const Pose2 guess = truth.Compose(Pose2(0.15, -0.1, 0.05));
+    const MatchResult m = MatchScan(grid, PrepareScan(RoomScan(truth), 30.0, params), guess, params);
+    const MatchResult m0 = MatchScan(grid, PrepareScan(RoomScan(truth), 30.0, off), guess, off);
+    EXPECT_EQ(m.constraints.unconstrained, 0);
+    EXPECT_EQ(m.pose.vector(), m0.pose.vector());
+  }
 }
 
 // A second layer is read only where the map is unknown: an empty map over the room's layer

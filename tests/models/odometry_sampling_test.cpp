@@ -46,3 +46,28 @@ TEST(OdometrySampling, SamplesHaveTheStatedSpreadAndTheDensityMatchesIt) {
 
 }  // namespace
 }  // namespace slamkit
+
+namespace slamkit {
+namespace {
+
+// Driving backwards is the same motion mirrored: the noise of an increment depends on its size,
+// not its sign (no rot1-trans-rot2 split, whose first turn would flip by π when reversing), and
+// the density of a reversed move mirrors the forward one's.
+TEST(OdometryMotion, ReverseIncrementsHaveTheForwardNoise) {
+  const OdometryNoiseParams noise{.srr = 0.1, .srt = 0.05, .str = 0.02, .stt = 0.2};
+  const Pose2 forward(0.8, 0.1, 0.3);
+  const Pose2 backward(-0.8, -0.1, -0.3);
+  EXPECT_EQ(OdometryNoiseSigmas(forward, noise), OdometryNoiseSigmas(backward, noise));
+  // The noise is added to the increment (as SampleOdometryMotion does): n forward, −n backward.
+  const Pose2 from(1.0, 2.0, 0.5);
+  const double forward_density =
+      OdometryMotionLogDensity(from, forward, from.Compose(Pose2(0.83, 0.08, 0.31)), noise);
+  EXPECT_NEAR(forward_density,
+              OdometryMotionLogDensity(from, backward, from.Compose(Pose2(-0.83, -0.08, -0.31)),
+                                       noise),
+              1e-12);
+  EXPECT_LT(forward_density, -0.01) << "the move carries noise: the test is moot";
+}
+
+}  // namespace
+}  // namespace slamkit

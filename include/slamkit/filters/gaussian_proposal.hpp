@@ -35,6 +35,13 @@ ProposalDistribution GaussianProposal(const GridMapView& grid, const ScanPoints&
                                       const ScanMatcherParams& matcher,
                                       const GaussianProposalParams& params = {});
 
+// The proposal without the part that the match leaves unconstrained (MatchScan kept the guess,
+// a motion sample, there): its mean moves from `match` only along the constrained directions and
+// its spread lies in them, so along a featureless corridor the particles keep the motion model's
+// spread instead of all climbing toward the mapped part.
+void KeepConstrainedPart(const MatchConstraints& constraints, const Pose2& match,
+                         ProposalDistribution* proposal);
+
 // One draw from the proposal (its covariance's Cholesky factor times standard normals).
 Pose2 SampleProposal(const ProposalDistribution& proposal, Rng& rng);
 

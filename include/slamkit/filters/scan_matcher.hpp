@@ -1,11 +1,13 @@
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/filters/grid_map_view.hpp"
+#include "slamkit/filters/match_constraints.hpp"
 #include "slamkit/maps/occupancy_grid.hpp"
 #include "slamkit/core/laser_scan.hpp"
 
@@ -33,13 +35,18 @@ struct ScanMatcherParams {
   double coarse_score_sigma_m = 0.15;
   int coarse_beam_stride = 3;
   int coarse_refinements = 5;
+  // Where the scan does not constrain the pose (a featureless corridor), the match keeps the
+  // initial guess in that direction (see MatchConstraintParams).
+  MatchConstraintParams constraints;
 };
 
 // The beams of one scan that can be matched, as points in the robot frame (the laser offset
-// already applied), with the unit direction of each beam (for the free-space test).
+// already applied), with the unit direction of each beam (for the free-space test) and the
+// surface normal at its end (zero where there is none; fitted to all the scan's returns).
 struct ScanPoints {
   std::vector<Eigen::Vector2d> ends;
   std::vector<Eigen::Vector2d> directions;
+  std::vector<Eigen::Vector2d> normals;
 };
 
 // Every params.beam_stride-th beam that returned within `usable_range_m` (the laser's usable
@@ -57,17 +64,21 @@ struct MatchQuality {
 // layer where it is unknown): each beam end looks for the nearest occupied cell in a small
 // window whose neighbour toward the sensor is free (GMapping's test), and d is the distance from
 // the end to that cell's centre. A view without a second layer reads the map's tiles directly.
+// With `hits`, hits[i] says whether beam i found an occupied cell.
 MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
-                          const ScanMatcherParams& params);
+                          const ScanMatcherParams& params,
+                          std::vector<std::uint8_t>* hits = nullptr);
 
 struct MatchResult {
   Pose2 pose;
   MatchQuality quality;
   bool accepted = false;  // the score passed min_score_fraction
+  MatchConstraints constraints;  // the directions in which the guess was kept
 };
 
 // Hill climbing from `initial` on the score, with six moves (±x, ±y, ±θ) and step halving;
-// a coarse pass first, then the fine one from its result.
+// a coarse pass first, then the fine one from its result; then, in the directions the matched
+// beams leave unconstrained, the pose moves back to the guess (MatchConstraintParams).
 MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                       const ScanMatcherParams& params);
 
