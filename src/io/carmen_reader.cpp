@@ -20,7 +20,10 @@ namespace {
 
 // A timestamp may fall behind its stream's previous one by this much (rounding in the log).
 constexpr double kTimeToleranceS = 1e-6;
-constexpr double kNoTimestampS = 1e-6;
+
+// 0 (or, in GMapping-written logs, a denormal like 1.08499e-42) stands for "no timestamp": such
+// a record is neither ordered nor placed in time.
+bool HasTimestamp(double t_s) { return t_s >= 1e-6; }
 
 // The latest timestamp of one stream (ODOM, or scans) and its line, for the ordering check.
 struct StreamClock {
@@ -60,6 +63,7 @@ class CarmenParser {
   void SetMaxRanges();
   void DropContradictedParams();
   void CountNoReturns();
+  void InterpolateScanOdometry();
 
   void AddScan(const text::Fields& fields, LaserScan scan, int line) {
     Tick(fields, scan.t_s, line, &scan_clock_);
@@ -68,8 +72,7 @@ class CarmenParser {
 
   // Checks that t_s does not go back in its stream, then advances the stream's clock.
   void Tick(const text::Fields& fields, double t_s, int line, StreamClock* clock) {
-    // 0 (or, in GMapping-written logs, a denormal like 1.08499e-42) stands for "no timestamp".
-    if (t_s < kNoTimestampS) return;
+    if (!HasTimestamp(t_s)) return;
     if (clock->line > 0 && t_s < clock->t_s - kTimeToleranceS) {
       if (t_s < clock->t_s - options_.max_time_step_back_s) {
         fields.Fail({"timestamp"}, fmt::format("time goes backwards ({:.6f} < {:.6f} on line {})",
@@ -162,14 +165,49 @@ void CarmenParser::CountNoReturns() {
   }
 }
 
+// Odometry at each scan's time from the ODOM records that have one. GMapping-written logs follow
+// every scan with an `ODOM ... 0 pippo 0` copy of its corrected pose: sorted by time, those
+// copies came first and gave their pose to the scans before the first stamped record (and to
+// scans without a timestamp). A scan without a timestamp, or in a log whose ODOM records have
+// none, keeps its own fields.
+void CarmenParser::InterpolateScanOdometry() {
+  if (log_.odometry.empty()) return;
+  Trajectory stamped;
+  for (const StampedPose& record : log_.odometry) {
+    if (HasTimestamp(record.t_s)) stamped.push_back(record);
+  }
+  const std::size_t unstamped = log_.odometry.size() - stamped.size();
+  if (stamped.empty()) {
+    log_.notes.push_back(fmt::format("none of the {} ODOM records has a timestamp, so the "
+                                     "odometry comes from the scan records' own fields",
+                                     unstamped));
+    return;
+  }
+  if (unstamped > 0) {
+    log_.notes.push_back(fmt::format("{} of {} ODOM records have no timestamp and are not used "
+                                     "to interpolate the odometry",
+                                     unstamped, log_.odometry.size()));
+  }
+  std::stable_sort(stamped.begin(), stamped.end(),
+                   [](const StampedPose& a, const StampedPose& b) { return a.t_s < b.t_s; });
+  std::size_t unstamped_scans = 0;
+  for (LaserScan& scan : log_.scans) {
+    if (HasTimestamp(scan.t_s)) {
+      scan.odometry = InterpolateOdometry(stamped, scan.t_s);
+    } else {
+      ++unstamped_scans;
+    }
+  }
+  if (unstamped_scans > 0) {
+    log_.notes.push_back(fmt::format("{} of {} scans have no timestamp, so their odometry comes "
+                                     "from their own fields",
+                                     unstamped_scans, log_.scans.size()));
+  }
+}
+
 CarmenLog CarmenParser::Finish() {
   SetMaxRanges();
-  if (!log_.odometry.empty() && !options_.odometry_from_scan_fields) {
-    Trajectory sorted = log_.odometry;
-    std::stable_sort(sorted.begin(), sorted.end(),
-                     [](const StampedPose& a, const StampedPose& b) { return a.t_s < b.t_s; });
-    for (LaserScan& scan : log_.scans) scan.odometry = InterpolateOdometry(sorted, scan.t_s);
-  }
+  if (!options_.odometry_from_scan_fields) InterpolateScanOdometry();
   return std::move(log_);
 }
 

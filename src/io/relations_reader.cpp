@@ -1,7 +1,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <string_view>
 #include <vector>
 
 #include "slamkit/io/relations_reader.hpp"
@@ -33,17 +32,10 @@ PoseRelation ParseRelation(const text::Fields& fields) {
 }  // namespace
 
 std::vector<PoseRelation> ReadRelations(const std::filesystem::path& path) {
-  text::LineReader reader(path);
   std::vector<PoseRelation> relations;
-  std::vector<std::string_view> tokens;
-  std::string_view line;
-  while (reader.Next(&line)) {
-    text::Tokenize(line, &tokens);
-    if (tokens.empty() || tokens[0].starts_with('#')) continue;
-    const text::Fields fields(fmt::format("{}:{}", path.string(), reader.line_number()), "",
-                                tokens);
+  text::ForEachRecord(path, [&](const text::Fields& fields) {
     relations.push_back(ParseRelation(fields));
-  }
+  });
   if (relations.empty()) {
     throw InputError(path.string() +
                      ": no relations (expected `t1 t2 x y z roll pitch yaw` lines)");

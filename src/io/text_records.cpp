@@ -83,6 +83,18 @@ void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
   }
 }
 
+void ForEachRecord(const std::filesystem::path& path,
+                   const std::function<void(const Fields&)>& parse) {
+  LineReader reader(path);
+  std::vector<std::string_view> tokens;
+  std::string_view line;
+  while (reader.Next(&line)) {
+    Tokenize(line, &tokens);
+    if (tokens.empty() || tokens[0].starts_with('#')) continue;
+    parse(Fields(fmt::format("{}:{}", path.string(), reader.line_number()), "", tokens));
+  }
+}
+
 void Fields::Fail(const FieldName& field, std::string_view reason) const {
   const std::string name = field.index >= 0 ? fmt::format("{}{}", field.base, field.index)
                                             : std::string(field.base);

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -63,6 +64,7 @@ class Fields {
   Fields(std::string where, std::string_view kind, std::span<const std::string_view> tokens)
       : where_(std::move(where)), kind_(kind), tokens_(tokens) {}
 
+  const std::string& where() const { return where_; }
   std::size_t size() const { return tokens_.size(); }
   std::string_view Text(std::size_t i) const { return tokens_[i]; }
   [[noreturn]] void Fail(const FieldName& field, std::string_view reason) const;
@@ -76,5 +78,12 @@ class Fields {
   std::string_view kind_;
   std::span<const std::string_view> tokens_;
 };
+
+// Calls `parse` with the fields of each record of the file at `path` (read by LineReader): every
+// line that is not blank and whose first token does not start with `#`. The fields have no record
+// kind and name `file:line` in their errors. The loop of the kind-less readers (trajectories,
+// relations, waypoints), so that they skip, number and name lines alike.
+void ForEachRecord(const std::filesystem::path& path,
+                   const std::function<void(const Fields&)>& parse);
 
 }  // namespace slamkit::text

@@ -1,8 +1,6 @@
 #include "slamkit/io/trajectory_reader.hpp"
 
 #include <cmath>
-#include <string_view>
-#include <vector>
 
 #include <fmt/format.h>
 
@@ -62,17 +60,9 @@ StampedPose ParsePose(const text::Fields& fields) {
 }  // namespace
 
 Trajectory ReadTrajectory(const std::filesystem::path& path) {
-  text::LineReader reader(path);
   Trajectory poses;
-  std::vector<std::string_view> tokens;
-  std::string_view line;
-  while (reader.Next(&line)) {
-    text::Tokenize(line, &tokens);
-    if (tokens.empty() || tokens[0].starts_with('#')) continue;
-    const text::Fields fields(fmt::format("{}:{}", path.string(), reader.line_number()), "",
-                              tokens);
-    poses.push_back(ParsePose(fields));
-  }
+  text::ForEachRecord(path,
+                      [&](const text::Fields& fields) { poses.push_back(ParsePose(fields)); });
   if (poses.empty()) {
     throw InputError(path.string() +
                      ": no poses (expected `t x y theta` or TUM `t x y z qx qy qz qw` lines)");

@@ -142,14 +142,15 @@ TEST_F(CarmenReader, ReadsIntelGfs) {
 }
 
 TEST_F(CarmenReader, InterpolatesOdometryAtTheScanTime) {
-  const std::string text = Flaser(-1) + Odom(0, 0, 0, 0) + Flaser(0.25) + Odom(1, 0, 0.2, 1) +
-                           Flaser(1) + Flaser(2);
+  // Times from 10 s: a timestamp below 1e-6 s is "none" and places no record in time.
+  const std::string text = Flaser(9) + Odom(0, 0, 0, 10) + Flaser(10.25) + Odom(1, 0, 0.2, 11) +
+                           Flaser(11) + Flaser(12);
   CarmenReadOptions interpolate;
   interpolate.odometry_from_scan_fields = false;
   const CarmenLog log = ReadCarmenLog(Write(text), interpolate);
   ASSERT_EQ(log.scans.size(), 4u);
   ASSERT_EQ(log.odometry.size(), 2u);
-  EXPECT_EQ(log.odometry[1].t_s, 1.0);
+  EXPECT_EQ(log.odometry[1].t_s, 11.0);
   EXPECT_TRUE(log.scans[1].odometry.vector().isApprox(Eigen::Vector3d(0.25, 0, 0.05), 1e-12));
   ExpectSamePose(log.scans[1].logged_pose, Pose2(9, 8, 0.7));
   ExpectSamePose(log.scans[0].odometry, Pose2(0, 0, 0));    // before the first record
@@ -169,7 +170,8 @@ TEST_F(CarmenReader, InterpolatesHeadingAcrossThePiWrap) {
   CarmenReadOptions interpolate;
   interpolate.odometry_from_scan_fields = false;
   const CarmenLog log = ReadCarmenLog(
-      Write(Odom(0, 0, 3.0, 0) + Odom(0, 0, -3.0, 1) + Flaser(0.25) + Flaser(0.5)), interpolate);
+      Write(Odom(0, 0, 3.0, 10) + Odom(0, 0, -3.0, 11) + Flaser(10.25) + Flaser(10.5)),
+      interpolate);
   ASSERT_EQ(log.scans.size(), 2u);
   EXPECT_NEAR(log.scans[0].odometry.theta(), 3.0 + 0.25 * (2 * M_PI - 6.0), 1e-12);
   EXPECT_NEAR(std::abs(log.scans[1].odometry.theta()), M_PI, 1e-6);

@@ -18,7 +18,9 @@ struct CarmenReadOptions {
   // by more than this is malformed; smaller steps back are accepted and counted. Real logs need
   // the slack: intel.clf's clock jitters back by up to 0.9 s (602 ODOM, 631 FLASER records)
   // although its records are in causal order. A timestamp below 1e-6 s means "none" (the
-  // GMapping-written logs put `ODOM ... 0 pippo 0`, or a denormal, after every scan): unchecked.
+  // GMapping-written logs put `ODOM ... 0 pippo 0`, or a denormal, after every scan): unchecked,
+  // and the next record is checked against the last one that had a timestamp. Equal timestamps
+  // (repeated scan or ODOM stamps) are in order.
   double max_time_step_back_s = 1.0;
   // Take LaserScan::odometry from the scan record's own odometry fields (FLASER odom_x odom_y
   // odom_theta, ROBOTLASER1 robot pose), the default; false interpolates the ODOM records at the
@@ -33,7 +35,8 @@ struct CarmenReadOptions {
 
 // A CARMEN log: the scans in log order with the odometry at each scan's timestamp, the raw
 // odometry records, and the PARAM settings. Where timestamps are monotonic (the default options
-// ensure it) log order is time order.
+// ensure it, up to max_time_step_back_s, for the records that have one) log order is time order;
+// a log without any timestamp (all 0) is read in log order.
 struct CarmenLog {
   std::vector<LaserScan> scans;
   Trajectory odometry;                        // the ODOM records in log order
@@ -75,9 +78,12 @@ struct CarmenLog {
 // robot pose and laser_offset the laser pose seen from the robot pose.
 //
 // Odometry at a scan: with ODOM records (and not odometry_from_scan_fields), linear interpolation
-// between the ODOM records (ordered by timestamp) that bracket the scan's timestamp, the heading
-// along the shorter arc; the first or last record's pose outside their span. Without ODOM
-// records, the scan record's odometry fields.
+// between the ODOM records (ordered by timestamp, log order among equal ones) that bracket the
+// scan's timestamp, the heading along the shorter arc; the first or last record's pose outside
+// their span; at a timestamp that several records share, the last of them in the log. ODOM
+// records without a timestamp (see max_time_step_back_s) cannot be placed in time and are not
+// used (a note counts them). Without ODOM records, without any that has a timestamp (a note says
+// so), or for a scan without a timestamp (a note counts them), the scan record's odometry fields.
 CarmenLog ReadCarmenLog(const std::filesystem::path& path, const CarmenReadOptions& options = {});
 
 }  // namespace slamkit
