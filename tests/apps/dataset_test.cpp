@@ -185,6 +185,36 @@ TEST(Suite, RunsEveryLogAndSeedAndRecordsAFailedRun) {
   }
 }
 
+// --logs picks logs of the manifest by name, and --config reaches every run (its parameters are
+// in each run's metrics.json).
+TEST(Suite, RunsTheNamedLogsWithTheGivenConfig) {
+  const std::string suite = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/suite/";
+  if (!fs::exists(suite + "freiburg-101.log.gz")) GTEST_SKIP() << "no suite";
+  const fs::path dir = FreshDir("suite_logs");
+  std::ofstream(dir / "suite.yaml")
+      << "root: " << suite << "\nlogs:\n"
+      << "  - {name: f101, log: freiburg-101.log.gz, reference: freiburg-101.reference.txt}\n"
+      << "  - {name: csail, log: csail.log.gz, reference: csail.reference.txt, pair_by: index}\n";
+  std::ofstream(dir / "grid.yaml") << "particles: 2\nusable_range_m: 12.5\n";
+  const std::string common = "suite --manifest " + (dir / "suite.yaml").string() +
+                             " --max-scans 20 --config " + (dir / "grid.yaml").string();
+  const auto r = RunCli(common + " --logs csail --out " + (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = nlohmann::json::parse(ReadText(dir / "out" / "summary.json"));
+  ASSERT_EQ(summary["runs"].size(), 1u);
+  const auto& metrics = summary["runs"][0]["metrics"];
+  EXPECT_EQ(summary["runs"][0]["log"], "csail");
+  EXPECT_EQ(metrics["particles"], 2);
+  EXPECT_EQ(metrics["usable_range_m"], 12.5);
+  const auto unknown = RunCli(common + " --logs csail,intel --out " + (dir / "bad").string());
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--logs: no log 'intel' in " + (dir / "suite.yaml").string() +
+                                " (its logs: f101, csail)"),
+            std::string::npos)
+      << unknown.output;
+  EXPECT_FALSE(fs::exists(dir / "bad"));
+}
+
 TEST(Suite, BadSeedsAndManifestsExitTwoBeforeAnyRun) {
   const fs::path dir = FreshDir("suite_bad");
   std::ofstream(dir / "suite.yaml") << "logs:\n  - {name: a, log: nowhere.clf}\n";
