@@ -95,37 +95,52 @@ void RbpfGridSlam::TrackAndMove(const LaserScan& scan, int scan_index,
   tracking.wait();
 }
 
-// SPEC S4 (GMapping's proposal): sample the motion, refine it by matching the scan against the
-// particle's own map, weigh by the scan likelihood at the refined pose (and by the extra factor,
-// if any).
+// SPEC S4 (GMapping's proposal): every particle moves and is weighed (MoveParticle); their mean
+// match score sets the next update's bar for a poor match (widen_below_typical_score).
 void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
   const ScanPoints points = PrepareScan(scan, params_.usable_range_m, params_.matcher);
   const int n = particles_.size();
-  tbb::parallel_for(0, n, [&](int i) {
-    GridParticle& p = particles_[i];
-    Rng rng = streams_.ForParticle(updates_, i);
-    const GridMapView map = p.View();
-    const Pose2 previous = p.pose;
-    const Pose2 predicted = SampleOdometryMotion(previous, delta, params_.motion, rng);
-    const MatchResult match = MatchScan(map, points, predicted, params_.matcher);
-    double log_likelihood = 0.0;
-    if (!match.accepted) {
-      p.pose = predicted;
-      log_likelihood = EvaluatePose(map, points, predicted, params_.matcher).log_likelihood;
-    } else if (params_.proposal == ProposalScheme::kGaussian) {
-      ProposalDistribution proposal =
-          GaussianProposal(map, points, match.pose, previous, delta, params_.motion,
-                           params_.matcher, params_.gaussian);
-      KeepConstrainedPart(match.constraints, match.pose, &proposal);
-      p.pose = SampleProposal(proposal, rng);
-      log_likelihood = proposal.log_normaliser;
-    } else {
-      p.pose = match.pose;
-      log_likelihood = match.quality.log_likelihood;
-    }
-    particles_.AddLogWeight(i, log_likelihood);
-    if (extra_factor_) particles_.AddLogWeight(i, extra_factor_({i, p.pose, map, points}));
-  });
+  ScanMatcherParams matcher = params_.matcher;
+  if (params_.widen_below_typical_score > 0.0) {
+    matcher.widen_below_score_fraction =
+        params_.widen_below_typical_score * typical_score_fraction_;
+  }
+  std::vector<double> scores(n, 0.0);
+  tbb::parallel_for(0, n, [&](int i) { scores[i] = MoveParticle(i, points, delta, matcher); });
+  double total = 0.0;
+  for (double s : scores) total += s;  // in particle order: the same sum for any thread count
+  typical_score_fraction_ = points.ends.empty() ? 0.0 : total / (n * double(points.ends.size()));
+}
+
+// Samples particle i's motion, refines it by matching the scan against its own map, weighs it by
+// the scan likelihood at the refined pose (and by the extra factor, if any); returns the match's
+// score.
+double RbpfGridSlam::MoveParticle(int i, const ScanPoints& points, const Pose2& delta,
+                                  const ScanMatcherParams& matcher) {
+  GridParticle& p = particles_[i];
+  Rng rng = streams_.ForParticle(updates_, i);
+  const GridMapView map = p.View();
+  const Pose2 previous = p.pose;
+  const Pose2 predicted = SampleOdometryMotion(previous, delta, params_.motion, rng);
+  const MatchResult match = MatchScan(map, points, predicted, matcher);
+  double log_likelihood = 0.0;
+  if (!match.accepted) {
+    p.pose = predicted;
+    log_likelihood = EvaluatePose(map, points, predicted, params_.matcher).log_likelihood;
+  } else if (params_.proposal == ProposalScheme::kGaussian) {
+    ProposalDistribution proposal = GaussianProposal(map, points, match.pose, previous, delta,
+                                                     params_.motion, params_.matcher,
+                                                     params_.gaussian);
+    KeepConstrainedPart(match.constraints, match.pose, &proposal);
+    p.pose = SampleProposal(proposal, rng);
+    log_likelihood = proposal.log_normaliser;
+  } else {
+    p.pose = match.pose;
+    log_likelihood = match.quality.log_likelihood;
+  }
+  particles_.AddLogWeight(i, log_likelihood);
+  if (extra_factor_) particles_.AddLogWeight(i, extra_factor_({i, p.pose, map, points}));
+  return match.quality.score;
 }
 
 // The scans between updates leave the particles where they are; each one's pose relative to the

@@ -225,22 +225,43 @@ void KeepGuessWhereUnconstrained(const GridMapView& grid, const ScanPoints& poin
   best->quality = EvaluatePose(grid, points, best->pose, params);
 }
 
-}  // namespace
-
-MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
-                      const ScanMatcherParams& params) {
+// The coarse pass (if any) from `initial`: where the fine pass should start.
+Pose2 CoarseStart(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
+                  const ScanMatcherParams& params) {
+  if (!params.coarse_pass) return initial;
   ScanMatcherParams coarse = params;
   coarse.search_cells = params.coarse_search_cells;
   coarse.score_sigma_m = params.coarse_score_sigma_m;
   coarse.refinements = params.coarse_refinements;
-  const Pose2 start =
-      params.coarse_pass
-          ? HillClimb(grid, EveryNth(points, params.coarse_beam_stride), initial, coarse).pose
-          : initial;
-  MatchResult best = HillClimb(grid, points, start, params);
+  return HillClimb(grid, EveryNth(points, params.coarse_beam_stride), initial, coarse).pose;
+}
+
+// The widened search: the whole climb (coarse and fine) from each of the other headings; the best
+// match found replaces `best` if it scores higher.
+void WidenHeadings(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
+                   const ScanMatcherParams& params, MatchResult* best) {
+  for (int k = 1; k <= params.widen_heading_starts; ++k) {
+    for (double sign : {-1.0, 1.0}) {
+      const Pose2 turned(initial.x(), initial.y(),
+                         initial.theta() + sign * k * params.widen_heading_step_rad);
+      const MatchResult other =
+          HillClimb(grid, points, CoarseStart(grid, points, turned, params), params);
+      if (other.quality.score > best->quality.score) *best = other;
+    }
+  }
+}
+
+}  // namespace
+
+MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
+                      const ScanMatcherParams& params) {
+  MatchResult best = HillClimb(grid, points, CoarseStart(grid, points, initial, params), params);
+  const double n = double(points.ends.size());
+  if (best.quality.score < params.widen_below_score_fraction * n) {
+    WidenHeadings(grid, points, initial, params, &best);
+  }
   KeepGuessWhereUnconstrained(grid, points, initial, params, &best);
-  best.accepted = !points.ends.empty() &&
-                  best.quality.score >= params.min_score_fraction * double(points.ends.size());
+  best.accepted = !points.ends.empty() && best.quality.score >= params.min_score_fraction * n;
   return best;
 }
 

@@ -52,6 +52,9 @@ void ReadMatcher(const Section& s, ScanMatcherParams* m) {
   s.Read("coarse_score_sigma_m", &m->coarse_score_sigma_m, Bound::kPositive);
   s.Read("coarse_beam_stride", &m->coarse_beam_stride, 1);
   s.Read("coarse_refinements", &m->coarse_refinements, 0);
+  s.Read("widen_below_score_fraction", &m->widen_below_score_fraction, Bound::kNonNegative);
+  s.Read("widen_heading_step_rad", &m->widen_heading_step_rad, Bound::kPositive);
+  s.Read("widen_heading_starts", &m->widen_heading_starts, 0);
   MatchConstraintParams& c = m->constraints;
   s.Read("min_information_ratio", &c.min_information_ratio, Bound::kNonNegative);
   s.Read("normal_neighbours", &c.normal_neighbours, 1);
@@ -63,7 +66,8 @@ const std::vector<std::string> kMatcherKeys = {
     "beam_stride", "search_cells", "score_sigma_m", "likelihood_sigma_m", "linear_step_m",
     "angular_step_rad", "refinements", "min_score_fraction", "prior_sigma_xy_m",
     "prior_sigma_theta_rad", "coarse_pass", "coarse_search_cells", "coarse_score_sigma_m",
-    "coarse_beam_stride", "coarse_refinements", "min_information_ratio", "normal_neighbours",
+    "coarse_beam_stride", "coarse_refinements", "widen_below_score_fraction",
+    "widen_heading_step_rad", "widen_heading_starts", "min_information_ratio", "normal_neighbours",
     "normal_radius_m", "max_normal_spread"};
 
 nlohmann::json MatcherJson(const ScanMatcherParams& m) {
@@ -77,6 +81,9 @@ nlohmann::json MatcherJson(const ScanMatcherParams& m) {
           {"coarse_score_sigma_m", m.coarse_score_sigma_m},
           {"coarse_beam_stride", m.coarse_beam_stride},
           {"coarse_refinements", m.coarse_refinements},
+          {"widen_below_score_fraction", m.widen_below_score_fraction},
+          {"widen_heading_step_rad", m.widen_heading_step_rad},
+          {"widen_heading_starts", m.widen_heading_starts},
           {"min_information_ratio", m.constraints.min_information_ratio},
           {"normal_neighbours", m.constraints.normal_neighbours},
           {"normal_radius_m", m.constraints.normal_radius_m},
@@ -106,7 +113,8 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   const YAML::Node yaml = config::LoadYamlFile(path);
   const Section s(yaml, path.string(), "",
                   {"particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
-                   "likelihood_gain", "motion", "usable_range_m", "matcher", "proposal",
+                   "likelihood_gain", "motion", "usable_range_m", "matcher",
+                   "widen_below_typical_score", "proposal",
                    "gaussian", "tracking_mode", "tracking", "tracking_max_correction_m",
                    "tracking_max_correction_rad", "grid"});
   RbpfGridSlamParams p = defaults;
@@ -126,6 +134,7 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   m.Read("stt", &p.motion.stt, Bound::kNonNegative);
   s.Read("usable_range_m", &p.usable_range_m, Bound::kPositive);
   ReadMatcher(s.Child("matcher", kMatcherKeys), &p.matcher);
+  s.Read("widen_below_typical_score", &p.widen_below_typical_score, Bound::kNonNegative);
   p.proposal = ProposalOf(config::ReadChoice(s, "proposal", kProposals, ProposalIndex(p.proposal)));
   const Section g = s.Child("gaussian", {"step_xy_m", "step_theta_rad"});
   g.Read("step_xy_m", &p.gaussian.step_xy_m, Bound::kPositive);
@@ -154,6 +163,7 @@ nlohmann::json GridParamsJson(const RbpfGridSlamParams& p) {
                       {"stt", p.motion.stt}}},
           {"usable_range_m", p.usable_range_m},
           {"matcher", MatcherJson(p.matcher)},
+          {"widen_below_typical_score", p.widen_below_typical_score},
           {"proposal", kProposals[ProposalIndex(p.proposal)]},
           {"gaussian", {{"step_xy_m", p.gaussian.step_xy_m},
                         {"step_theta_rad", p.gaussian.step_theta_rad}}},

@@ -99,6 +99,12 @@ struct RbpfGridSlamParams {
   // into the maps (free space only) and are matched neither by the particles nor by the tracking.
   double usable_range_m = 30.0;
   ScanMatcherParams matcher;
+  // At an update, a particle's match that scores below this fraction of the particles' mean
+  // score at the previous update is retried from other headings (matcher.widen_heading_*), where
+  // matcher.widen_below_score_fraction is 0. A score relative to the log's own keeps the retries
+  // to the poor matches of each building, whatever its typical score (open halls score lower).
+  // Zero switches it off.
+  double widen_below_typical_score = 0.0;
   ProposalScheme proposal = ProposalScheme::kGaussian;
   GaussianProposalParams gaussian;
   TrackingMode tracking_mode = TrackingMode::kTrackedMotion;
@@ -173,6 +179,8 @@ class RbpfGridSlam {
  private:
   void Initialise(const LaserScan& scan);
   void MoveAndWeigh(const LaserScan& scan, const Pose2& delta);
+  double MoveParticle(int i, const ScanPoints& points, const Pose2& delta,
+                      const ScanMatcherParams& matcher);
   void ResampleIfNeeded();
   void InsertIntoMaps(const LaserScan& scan, int scan_index);
   void TrackAndMove(const LaserScan& scan, int scan_index, const Pose2& odometry_delta);
@@ -200,6 +208,7 @@ class RbpfGridSlam {
   Pose2 last_update_odometry_;
   int updates_ = 0;
   int resamples_ = 0;
+  double typical_score_fraction_ = 0.0;  // the particles' mean match score / beams, last update
 };
 
 }  // namespace slamkit

@@ -35,6 +35,13 @@ struct ScanMatcherParams {
   double coarse_score_sigma_m = 0.15;
   int coarse_beam_stride = 3;
   int coarse_refinements = 5;
+  // A match scoring below this fraction of its beams is retried from headings
+  // ±k·widen_heading_step_rad (k = 1..widen_heading_starts) around the guess, and the best climb
+  // kept: a turn that odometry misjudged by more than the climb can recover leaves the first
+  // climb in a poor local optimum. Zero switches it off.
+  double widen_below_score_fraction = 0.0;
+  double widen_heading_step_rad = 0.06;
+  int widen_heading_starts = 2;
   // Where the scan does not constrain the pose (a featureless corridor), the match keeps the
   // initial guess in that direction (see MatchConstraintParams).
   MatchConstraintParams constraints;
