@@ -5,6 +5,9 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <cerrno>
 #include <cmath>
@@ -198,6 +201,11 @@ int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& resu
   if (!odometry.empty()) WriteTumTrajectory(dir / "odometry.tum", WithIncreasingTimes(odometry));
   WriteOccupancyGridPgm(dir / "map.pgm", result.map);
   // map.png is the figure (cropped, the paths over it, a scale bar); map.pgm holds every cell.
+#ifdef __GLIBC__
+  // The filter's particles and maps are gone by now, but glibc keeps their freed pages; handing
+  // them back first keeps the figure's canvas from adding to the peak (Intel: 145 -> 116 MiB).
+  malloc_trim(0);
+#endif
   MapSheetData figure;
   figure.columns = 1;
   figure.panel_px = 1200;
