@@ -91,6 +91,17 @@ RelationErrorStats EvaluateRelations(const Trajectory& unsorted_estimate,
     trans.push_back(error.translation().norm());
     rot.push_back(RadToDeg(std::abs(error.theta())));
   }
+  if (trans.empty() && !relations.empty()) {
+    // A mean of nothing would read as a perfect 0 m: most likely the relations of another log.
+    const auto [first, last] = std::minmax_element(
+        relations.begin(), relations.end(),
+        [](const PoseRelation& a, const PoseRelation& b) { return a.t1_s < b.t1_s; });
+    throw std::invalid_argument(fmt::format(
+        "none of the {} relations lies within the trajectory's time span ({:.3f} to {:.3f} s; "
+        "the relations start from {:.3f} to {:.3f} s): are they this log's?",
+        relations.size(), estimate.empty() ? 0.0 : estimate.front().t_s,
+        estimate.empty() ? 0.0 : estimate.back().t_s, first->t1_s, last->t1_s));
+  }
   const MeanStd t = Summarise(trans), a = Summarise(rot);
   return {static_cast<int>(trans.size()), skipped, t.mean, t.std, a.mean, a.std};
 }

@@ -65,6 +65,22 @@ TEST(Relations, StampsBetweenPosesAreInterpolatedAndOutsideOnesSkipped) {
   EXPECT_NEAR(s.rot_mean_deg, 0.0, 1e-9);
 }
 
+// Relations none of which the trajectory covers (another log's) are an error, not a perfect 0 m.
+TEST(Relations, NoneWithinTheTrajectoryIsAnError) {
+  const std::vector<PoseRelation> relations = {{100.0, 101.0, Pose2()}, {102.0, 103.0, Pose2()}};
+  try {
+    EvaluateRelations(kEstimate, relations);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("none of the 2 relations lies within the trajectory's "
+                                         "time span (0.000 to 2.000 s; the relations start from "
+                                         "100.000 to 102.000 s)"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(EvaluateRelations(kEstimate, {}).count, 0);  // no relations at all: nothing to say
+}
+
 TEST(InterpolatePoseAt, MatchesHandComputedPosesAndTakesTheShorterArc) {
   const Pose2 q = *InterpolatePoseAt(kEstimate, 1.25, 1e-3);
   EXPECT_NEAR(q.x(), 1.0, 1e-12);

@@ -25,7 +25,8 @@ struct RelationErrorStats {
 // reference δ*: the error is δ*⁻¹ ⊕ δ, its translation norm and |rotation| are averaged. Poses are
 // looked up by timestamp (InterpolatePoseAt: the nearest within `time_tolerance_s`, else
 // interpolated between the poses either side); a relation with a time outside the trajectory is
-// skipped and counted. Poses need not be in time order.
+// skipped and counted; if every relation is skipped (relations of another log),
+// std::invalid_argument naming both time spans. Poses need not be in time order.
 RelationErrorStats EvaluateRelations(const Trajectory& estimate,
                                      std::span<const PoseRelation> relations,
                                      double time_tolerance_s = 1e-3);
