@@ -21,8 +21,7 @@ void RbpfGridSlam::Initialise(const LaserScan& scan) {
   GridParticle first;
   first.pose = params_.initial_pose;
   first.map = OccupancyGrid(params_.grid);
-  InsertScan(first.map, first.pose.Compose(scan.laser_offset), scan,
-             {.usable_range_m = params_.usable_range_m});
+  InsertScan(first.map, first.pose.Compose(scan.laser_offset), scan, Insertion());
   first.path.Append(0, first.pose);
   particles_.Assign(params_.particles, first);  // copies share the map's tiles
   last_update_odometry_ = scan.odometry;
@@ -193,7 +192,7 @@ void RbpfGridSlam::InsertIntoMaps(const LaserScan& scan, int scan_index) {
       particles_[i].map = OccupancyGrid(params_.grid);
     }
   }
-  const ScanInsertionParams insertion{.usable_range_m = params_.usable_range_m};
+  const ScanInsertionParams insertion = Insertion();
   tbb::parallel_for(0, static_cast<int>(owners.size()), [&](int k) {
     GridParticle& p = particles_[owners[k]];
     InsertScan(p.map, p.pose.Compose(scan.laser_offset), scan, insertion);

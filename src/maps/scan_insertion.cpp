@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
@@ -48,6 +49,44 @@ void ForEachRayCell(const CellIndex& from, const CellIndex& to, bool include_end
   }
 }
 
+// The end cells of one scan's returns, for the membership test of every cell a ray crosses:
+// open addressing with linear probing in a table at most a quarter full, so a lookup is a hash
+// and one or two compares (a sorted vector's binary search cost 8 on a 360-beam scan).
+class HitCellSet {
+ public:
+  explicit HitCellSet(std::size_t expected) {
+    std::size_t size = 16;
+    while (size < 4 * expected) size *= 2;
+    slots_.assign(size, kEmpty);
+    mask_ = size - 1;
+  }
+  void Insert(const CellIndex& c) {
+    const std::uint64_t key = Key(c);
+    std::size_t i = Slot(key);
+    while (slots_[i] != kEmpty && slots_[i] != key) i = (i + 1) & mask_;
+    slots_[i] = key;
+  }
+  bool Contains(const CellIndex& c) const {
+    const std::uint64_t key = Key(c);
+    for (std::size_t i = Slot(key);; i = (i + 1) & mask_) {
+      if (slots_[i] == key) return true;
+      if (slots_[i] == kEmpty) return false;
+    }
+  }
+
+ private:
+  // Cell coordinates are bounded by OccupancyGrid::kMaxCellCoordinate, so no key is all ones.
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  static std::uint64_t Key(const CellIndex& c) {
+    return (std::uint64_t(std::uint32_t(c.x)) << 32) | std::uint32_t(c.y);
+  }
+  std::size_t Slot(std::uint64_t key) const {
+    return std::size_t((key * 0x9E3779B97F4A7C15ULL) >> 32) & mask_;
+  }
+  std::vector<std::uint64_t> slots_;
+  std::size_t mask_ = 0;
+};
+
 }  // namespace
 
 std::vector<CellIndex> RayCells(const CellIndex& from, const CellIndex& to) {
@@ -81,7 +120,11 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
   for (int i = 0; i < n; ++i) {
     const double range = scan.ranges_m[i];
     if (!std::isfinite(range) || range <= 0.0) continue;
-    const double length = std::min(range, params.usable_range_m);
+    const double reach = scan.IsReturn(i) ? params.usable_range_m
+                                          : std::min(params.usable_range_m,
+                                                     params.no_return_ray_length_m);
+    if (reach <= 0.0) continue;
+    const double length = std::min(range, reach);
     const double angle = laser_pose.theta() + scan.BeamAngle(i);
     const Eigen::Vector2d end =
         laser_pose.translation() + length * Eigen::Vector2d(std::cos(angle), std::sin(angle));
@@ -100,13 +143,28 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
         << "; raise OccupancyGridParams::max_cells (grid --max-map-cells) or the resolution";
     throw std::length_error(msg.str());
   }
+  const auto is_hit = [&](int i) {
+    return traced[i] && scan.IsReturn(i) && scan.ranges_m[i] <= params.usable_range_m;
+  };
+  if (!params.misses_spare_scan_hits) {
+    for (int i = 0; i < n; ++i) {
+      if (!traced[i]) continue;
+      ForEachRayCell(origin, ends[i], /*include_end=*/false,
+                     [&grid, miss](const CellIndex& c) { grid.UpdateSteps(c, miss); });
+      if (is_hit(i)) grid.UpdateSteps(ends[i], hit);
+    }
+    return;
+  }
+  HitCellSet hits(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    if (is_hit(i)) hits.Insert(ends[i]);
+  }
   for (int i = 0; i < n; ++i) {
     if (!traced[i]) continue;
-    const double range = scan.ranges_m[i];
-    const CellIndex end_cell = ends[i];
-    ForEachRayCell(origin, end_cell, /*include_end=*/false,
-                   [&grid, miss](const CellIndex& c) { grid.UpdateSteps(c, miss); });
-    if (scan.IsReturn(i) && range <= params.usable_range_m) grid.UpdateSteps(end_cell, hit);
+    ForEachRayCell(origin, ends[i], /*include_end=*/false, [&](const CellIndex& c) {
+      if (!hits.Contains(c)) grid.UpdateSteps(c, miss);
+    });
+    if (is_hit(i)) grid.UpdateSteps(ends[i], hit);
   }
 }
 

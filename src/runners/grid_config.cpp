@@ -1,5 +1,6 @@
 #include "slamkit/runners/grid_config.hpp"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -113,7 +114,8 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   const YAML::Node yaml = config::LoadYamlFile(path);
   const Section s(yaml, path.string(), "",
                   {"particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
-                   "likelihood_gain", "motion", "usable_range_m", "matcher",
+                   "likelihood_gain", "motion", "usable_range_m", "misses_spare_scan_hits",
+                   "no_return_ray_length_m", "matcher",
                    "widen_below_typical_score", "proposal",
                    "gaussian", "tracking_mode", "tracking", "tracking_max_correction_m",
                    "tracking_max_correction_rad", "grid"});
@@ -133,6 +135,8 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   m.Read("str", &p.motion.str, Bound::kNonNegative);
   m.Read("stt", &p.motion.stt, Bound::kNonNegative);
   s.Read("usable_range_m", &p.usable_range_m, Bound::kPositive);
+  s.Read("misses_spare_scan_hits", &p.misses_spare_scan_hits);
+  s.Read("no_return_ray_length_m", &p.no_return_ray_length_m, Bound::kNonNegative);
   ReadMatcher(s.Child("matcher", kMatcherKeys), &p.matcher);
   s.Read("widen_below_typical_score", &p.widen_below_typical_score, Bound::kNonNegative);
   p.proposal = ProposalOf(config::ReadChoice(s, "proposal", kProposals, ProposalIndex(p.proposal)));
@@ -162,6 +166,11 @@ nlohmann::json GridParamsJson(const RbpfGridSlamParams& p) {
           {"motion", {{"srr", p.motion.srr}, {"srt", p.motion.srt}, {"str", p.motion.str},
                       {"stt", p.motion.stt}}},
           {"usable_range_m", p.usable_range_m},
+          {"misses_spare_scan_hits", p.misses_spare_scan_hits},
+          // null: the usable range (JSON has no infinity)
+          {"no_return_ray_length_m", std::isfinite(p.no_return_ray_length_m)
+                                         ? nlohmann::json(p.no_return_ray_length_m)
+                                         : nlohmann::json(nullptr)},
           {"matcher", MatcherJson(p.matcher)},
           {"widen_below_typical_score", p.widen_below_typical_score},
           {"proposal", kProposals[ProposalIndex(p.proposal)]},

@@ -262,6 +262,25 @@ TEST(InsertScan, NoReturnAndCutBeamsMarkFreeSpaceUpToTheUsableRangeOnly) {
   ExpectGridEquals(grid, ExpectedLogOdds(free, {}, grid.params()));
 }
 
+TEST(InsertScan, NoReturnRaysStopAtTheirOwnLength) {
+  LaserScan scan;
+  scan.angle_min_rad = 0.0;
+  scan.angle_increment_rad = M_PI / 2.0;
+  scan.max_range_m = 10.0;
+  scan.ranges_m = {10.0f, 5.0f};  // +x: no return; +y: a return beyond the usable range
+  OccupancyGrid short_rays({.resolution_m = 1.0});
+  InsertScan(short_rays, Pose2(0.5, 0.5, 0.0), scan,
+             {.usable_range_m = 3.2, .no_return_ray_length_m = 1.2});
+  // The no-return beam ends 1.7 m from the cell corner, in cell (1, 0); the cut return still
+  // reaches cell (0, 3).
+  ExpectGridEquals(short_rays,
+                   ExpectedLogOdds({{0, 0}, {0, 0}, {0, 1}, {0, 2}}, {}, short_rays.params()));
+  OccupancyGrid no_rays({.resolution_m = 1.0});
+  InsertScan(no_rays, Pose2(0.5, 0.5, 0.0), scan,
+             {.usable_range_m = 3.2, .no_return_ray_length_m = 0.0});
+  ExpectGridEquals(no_rays, ExpectedLogOdds({{0, 0}, {0, 1}, {0, 2}}, {}, no_rays.params()));
+}
+
 TEST(InsertScan, InvalidRangesAreSkipped) {
   OccupancyGrid grid({.resolution_m = 1.0});
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -270,6 +289,48 @@ TEST(InsertScan, InvalidRangesAreSkipped) {
   InsertScan(grid, Pose2(0.5, 0.5, 0.0), ThreeBeamScan({-1.0f, -inf, nan}));
   EXPECT_EQ(grid.TileCount(), 0u);
   EXPECT_GT(grid.min_cell().x, grid.max_cell().x);
+}
+
+// A wall seen at grazing angles: the far beams cross the wall's row of cells just before their
+// own ends, through the cells their neighbours hit.
+TEST(InsertScan, MissesSpareTheCellsTheSameScanHits) {
+  const OccupancyGridParams params{.resolution_m = 0.05};
+  const Pose2 laser(0.0125, 1.0125, 0.0);
+  const double wall_y = 0.025;  // the middle of cell row 0
+  LaserScan scan;
+  scan.angle_min_rad = -1.5;
+  scan.angle_increment_rad = 0.002;
+  scan.max_range_m = 100.0;
+  while (scan.BeamAngle(static_cast<int>(scan.ranges_m.size())) < -0.06) {
+    const double a = scan.BeamAngle(static_cast<int>(scan.ranges_m.size()));
+    scan.ranges_m.push_back(static_cast<float>((laser.y() - wall_y) / std::sin(-a)));
+  }
+  OccupancyGrid plain(params);
+  OccupancyGrid spare(params);
+  InsertScan(plain, laser, scan, {.usable_range_m = 100.0});
+  InsertScan(spare, laser, scan, {.usable_range_m = 100.0, .misses_spare_scan_hits = true});
+  std::map<std::pair<int, int>, bool> hit_cells;
+  for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
+    const double a = scan.BeamAngle(i);
+    const CellIndex c = plain.WorldToCell(laser.translation() +
+                                          double(scan.ranges_m[i]) * Eigen::Vector2d(std::cos(a),
+                                                                                     std::sin(a)));
+    hit_cells[{c.x, c.y}] = true;
+  }
+  int eroded_plain = 0;
+  for (const auto& [xy, unused] : hit_cells) {
+    const CellIndex c{xy.first, xy.second};
+    EXPECT_GT(spare.LogOdds(c), 0.0f) << "hit cell (" << c.x << ", " << c.y << ")";
+    if (plain.LogOdds(c) <= 0.0f) ++eroded_plain;
+  }
+  EXPECT_GE(eroded_plain, 5) << "without the option the scan erodes its own wall";
+  // Elsewhere the two insertions agree cell for cell.
+  for (int y = plain.min_cell().y; y <= plain.max_cell().y; ++y) {
+    for (int x = plain.min_cell().x; x <= plain.max_cell().x; ++x) {
+      if (hit_cells.count({x, y}) != 0) continue;
+      ASSERT_EQ(plain.LogOdds({x, y}), spare.LogOdds({x, y})) << "cell (" << x << ", " << y << ")";
+    }
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -98,6 +99,10 @@ struct RbpfGridSlamParams {
   // The laser's usable range, the one setting of it: beams longer than this are cut when they go
   // into the maps (free space only) and are matched neither by the particles nor by the tracking.
   double usable_range_m = 30.0;
+  // Whether a scan's free-space update spares the cells its own returns hit (ScanInsertionParams).
+  bool misses_spare_scan_hits = false;
+  // How far a no-return beam marks free space (ScanInsertionParams); infinity: the usable range.
+  double no_return_ray_length_m = std::numeric_limits<double>::infinity();
   ScanMatcherParams matcher;
   // At an update, a particle's match that scores below this fraction of the particles' mean
   // score at the previous update is retried from other headings (matcher.widen_heading_*), where
@@ -177,6 +182,11 @@ class RbpfGridSlam {
   void CheckOutputHealth() const;
 
  private:
+  ScanInsertionParams Insertion() const {
+    return {.usable_range_m = params_.usable_range_m,
+            .misses_spare_scan_hits = params_.misses_spare_scan_hits,
+            .no_return_ray_length_m = params_.no_return_ray_length_m};
+  }
   void Initialise(const LaserScan& scan);
   void MoveAndWeigh(const LaserScan& scan, const Pose2& delta);
   double MoveParticle(int i, const ScanPoints& points, const Pose2& delta,

@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -137,10 +138,19 @@ std::vector<CellIndex> RayCells(const CellIndex& from, const CellIndex& to);
 
 struct ScanInsertionParams {
   double usable_range_m = 30.0;  // beams are cut here; a cut beam marks free space only
+  // When true, a beam's free-space update skips the cells where another beam of the same scan
+  // ends: a ray grazing a wall then no longer erodes the wall cells its neighbours just hit
+  // (Cartographer inserts a scan the same way: a cell hit in a scan gets no miss from it).
+  bool misses_spare_scan_hits = false;
+  // A no-return beam (LaserScan::IsReturn false) marks free space this far only, and never
+  // beyond the usable range: a beam that saw nothing may have met glass or a black surface well
+  // short of the laser's range (Cartographer's missing_data_ray_length; GMapping skips them).
+  double no_return_ray_length_m = std::numeric_limits<double>::infinity();
 };
 
 // Inverse sensor model: every beam marks the cells it crosses as free and, if it returned
-// within usable range, its end cell as occupied. `laser_pose` is the laser in the world frame.
+// within usable range, its end cell as occupied (a no-return beam is cut at
+// no_return_ray_length_m as well). `laser_pose` is the laser in the world frame.
 void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& scan,
                 const ScanInsertionParams& params = {});
 
