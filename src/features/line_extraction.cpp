@@ -48,33 +48,33 @@ std::vector<Piece> DissolveSmallPieces(std::span<const BeamPoint> points, std::v
   };
   std::vector<Piece> kept;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
-    Piece tiny = pieces[i];
-    Piece* prev = !kept.empty() && kept.back().run == tiny.run &&
+    Piece piece = pieces[i];
+    Piece* prev = !kept.empty() && kept.back().run == piece.run &&
                           kept.back().range.size() >= min_size
                       ? &kept.back()
                       : nullptr;
-    Piece* next = i + 1 < pieces.size() && pieces[i + 1].run == tiny.run &&
+    Piece* next = i + 1 < pieces.size() && pieces[i + 1].run == piece.run &&
                           pieces[i + 1].range.size() >= min_size
                       ? &pieces[i + 1]
                       : nullptr;
-    if (tiny.range.size() >= min_size || (!prev && !next)) {
-      kept.push_back(tiny);
+    if (piece.range.size() >= min_size || (!prev && !next)) {
+      kept.push_back(piece);
       continue;
     }
-    int k = tiny.range.begin, m = tiny.range.end;
+    int k = piece.range.begin, m = piece.range.end;
     while (k < m && fits(prev, k) && (!next || NearerToFirst(*prev, *next, points[k].p))) ++k;
     while (m > k && fits(next, m - 1)) --m;
-    if (k > tiny.range.begin) {
+    if (k > piece.range.begin) {
       prev->range.end = k;
       prev->fit = FitRange(points, prev->range, params);
     }
-    if (m < tiny.range.end) {
+    if (m < piece.range.end) {
       next->range.begin = m;
       next->fit = FitRange(points, next->range, params);
     }
     if (k < m) {
       const PointRange rest{k, m};
-      kept.push_back({rest, tiny.run, rest.size() >= kMinFitPoints ? FitRange(points, rest, params)
+      kept.push_back({rest, piece.run, rest.size() >= kMinFitPoints ? FitRange(points, rest, params)
                                                                    : LineFit{}});
     }
   }
