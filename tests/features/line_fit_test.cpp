@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include "common/numeric_jacobian.hpp"
 #include "features/polygon_room.hpp"
 #include "slamkit/core/rng.hpp"
 #include "slamkit/features/line_extraction.hpp"
@@ -14,6 +15,7 @@ namespace slamkit {
 namespace {
 
 using testing::MakePolygonRoom;
+using testing::NumericJacobian;
 using testing::ScanPolygonRoom;
 
 // Beams at `bearings` hitting `line` (the sensor at the origin), their polar coordinates perturbed
@@ -75,6 +77,35 @@ TEST(FitLineTls, ResidualIsTheRmsPerpendicularDistance) {
   EXPECT_NEAR(fit.line.rho_m, 1.0, 1e-9);
   EXPECT_NEAR(fit.line.alpha_rad, std::numbers::pi / 2.0, 1e-9);
   EXPECT_NEAR(fit.residual_rms_m, 0.01, 1e-9);
+}
+
+// The first-order propagation term by term: the same sum Σ J_i diag(σ_r², σ_φ²) J_iᵀ with each
+// J_i = ∂(ρ, α)/∂(r_i, φ_i) taken by central differences of the fit itself.
+TEST(FitLineTls, CovarianceEqualsPropagationThroughNumericJacobians) {
+  const double sigma_r = 0.02, sigma_b = 0.005;
+  Rng rng(4);
+  for (const PolarLine truth : {PolarLine{4.0, 0.4}, PolarLine{2.5, std::numbers::pi - 0.02},
+                                PolarLine{3.0, -std::numbers::pi + 0.02}}) {
+    // Noisy points, so the fit is not at the noise-free optimum where some terms vanish.
+    const std::vector<BeamPoint> points = PointsOnLine(
+        truth, Bearings(truth.alpha_rad - 0.9, truth.alpha_rad + 0.3, 25), &rng, 0.02, 0.005);
+    const LineFit fit = FitLineTls(points, sigma_r, sigma_b);
+    Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      auto by_beam = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+        std::vector<BeamPoint> moved = points;
+        moved[i].range_m = v[0];
+        moved[i].bearing_rad = v[1];
+        moved[i].p = v[0] * Eigen::Vector2d(std::cos(v[1]), std::sin(v[1]));
+        const PolarLine l = FitLineTls(moved, sigma_r, sigma_b).line;
+        return Eigen::Vector2d(l.rho_m, l.alpha_rad);
+      };
+      const Eigen::MatrixXd J =
+          NumericJacobian(by_beam, Eigen::Vector2d(points[i].range_m, points[i].bearing_rad), 1);
+      C += J * Eigen::Vector2d(sigma_r * sigma_r, sigma_b * sigma_b).asDiagonal() * J.transpose();
+    }
+    EXPECT_TRUE(fit.covariance.isApprox(C, 1e-5)) << fit.covariance << "\n" << C;
+  }
 }
 
 // The propagated covariance against the sample covariance of 2000 fits of noisy beams (range and
