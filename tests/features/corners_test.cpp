@@ -95,5 +95,34 @@ TEST(CornerRangeBearing, IsTheCornerInPolarFormWithItsCovarianceCarriedOver) {
   EXPECT_TRUE(InvertRangeBearing(Pose2(), z).isApprox(c.point_m, 1e-12));
 }
 
+// A laser mounted off the robot's centre: lines and corners come out where the room's walls and
+// corners are in the robot frame, and the covariances follow the frame change.
+TEST(ToRobotFrame, MovesLinesCornersAndCovariancesByTheLaserOffset) {
+  const auto room = MakePolygonRoom(0.4);
+  const Pose2 offset(0.25, -0.1, 0.3);
+  Rng rng(1);
+  const ScanFeatures sensor = ExtractFeatures(ScanPolygonRoom(room, &rng, 0.005, 0.0));
+  const ScanFeatures robot = ToRobotFrame(sensor, offset);
+  ASSERT_EQ(robot.lines.size(), room.visible_lines.size());
+  ASSERT_EQ(robot.corners.size(), 3u);
+  for (std::size_t i = 0; i < robot.lines.size(); ++i) {
+    const PolarLine want = InvertLine(offset, room.visible_lines[i]);
+    const Eigen::Vector2d e = LineInnovation(robot.lines[i].line, want);
+    EXPECT_LT(e.dot(robot.lines[i].covariance.inverse() * e), 13.8) << "line " << i;
+    EXPECT_NEAR(DistanceToLine(robot.lines[i].line, robot.lines[i].start_m), 0.0, 1e-9);
+    auto by_z = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+      const PolarLine l = InvertLine(offset, {v[0], v[1]});
+      return Eigen::Vector2d(l.rho_m, l.alpha_rad);
+    };
+    const PolarLine z = sensor.lines[i].line;
+    const Eigen::MatrixXd J = NumericJacobian(by_z, Eigen::Vector2d(z.rho_m, z.alpha_rad), 1);
+    EXPECT_TRUE(robot.lines[i].covariance.isApprox(
+        J * sensor.lines[i].covariance * J.transpose(), 1e-6));
+  }
+  EXPECT_TRUE(robot.corners[0].point_m.isApprox(offset.TransformFrom(room.concave_corners[0]),
+                                                0.02));
+  EXPECT_NEAR(robot.corners[2].covariance.trace(), sensor.corners[2].covariance.trace(), 1e-15);
+}
+
 }  // namespace
 }  // namespace slamkit

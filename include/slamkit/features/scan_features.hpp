@@ -8,8 +8,8 @@
 
 namespace slamkit {
 
-// The lines and corners of one scan, in the sensor frame (the scan's laser_offset is not applied:
-// InvertLine(laser_offset, line) and laser_offset.TransformFrom(point) bring them to the robot).
+// The lines and corners of one scan, in the sensor frame (the scan's laser_offset is not applied;
+// ToRobotFrame does that).
 struct ScanFeatures {
   std::vector<LineSegment> lines;  // beam order
   std::vector<Corner> corners;     // first_line / second_line index `lines`
@@ -17,5 +17,9 @@ struct ScanFeatures {
 
 // SPEC S1, feature extraction: ExtractLines, then ExtractCorners on its result.
 ScanFeatures ExtractFeatures(const LaserScan& scan, const LineExtractionParams& params = {});
+
+// The same features in the robot frame, given the laser's pose in it (LaserScan::laser_offset):
+// lines through InvertLine, points through the offset, covariances through their Jacobians.
+ScanFeatures ToRobotFrame(const ScanFeatures& sensor_frame, const Pose2& laser_offset);
 
 }  // namespace slamkit
