@@ -49,14 +49,12 @@ std::vector<Piece> DissolveSmallPieces(std::span<const BeamPoint> points, std::v
   std::vector<Piece> kept;
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     Piece piece = pieces[i];
-    Piece* prev = !kept.empty() && kept.back().run == piece.run &&
-                          kept.back().range.size() >= min_size
-                      ? &kept.back()
-                      : nullptr;
-    Piece* next = i + 1 < pieces.size() && pieces[i + 1].run == piece.run &&
-                          pieces[i + 1].range.size() >= min_size
-                      ? &pieces[i + 1]
-                      : nullptr;
+    // Only a neighbour of the same run, large enough to be kept, takes points.
+    auto receiver = [&](Piece* p) {
+      return p && p->run == piece.run && p->range.size() >= min_size ? p : nullptr;
+    };
+    Piece* prev = receiver(kept.empty() ? nullptr : &kept.back());
+    Piece* next = receiver(i + 1 < pieces.size() ? &pieces[i + 1] : nullptr);
     if (piece.range.size() >= min_size || (!prev && !next)) {
       kept.push_back(piece);
       continue;
@@ -148,24 +146,37 @@ void SettleBoundaries(std::span<const BeamPoint> points, std::vector<Piece>* pie
 }
 
 // SPEC S1, feature extraction, step 4 (the "merge" of split-and-merge): neighbouring pieces of
-// one run that fit the same line are joined, unless the joint fit's residual is too large.
+// one run that fit the same line are joined, unless the joint fit's residual is too large. The
+// one or two points that step 3b could not place (too far from both lines to join either) do
+// not stop a merge across them; the joint fit then has to accept them.
 std::vector<Piece> MergeCollinear(std::span<const BeamPoint> points, std::vector<Piece> pieces,
                                   const LineExtractionParams& params) {
-  std::vector<Piece> merged;
+  std::vector<Piece> merged, unplaced;
+  auto flush = [&] {
+    for (Piece& u : unplaced) merged.push_back(std::move(u));
+    unplaced.clear();
+  };
   for (Piece& piece : pieces) {
+    if (piece.range.size() < kMinFitPoints) {
+      unplaced.push_back(std::move(piece));
+      continue;
+    }
     if (!merged.empty() && merged.back().run == piece.run &&
-        merged.back().range.size() >= kMinFitPoints && piece.range.size() >= kMinFitPoints &&
+        merged.back().range.size() >= kMinFitPoints &&
         Collinear(merged.back().fit, piece.fit, params)) {
       const PointRange joint{merged.back().range.begin, piece.range.end};
       const LineFit fit = FitRange(points, joint, params);
       if (fit.residual_rms_m <= params.max_residual_rms_m) {
         merged.back().range = joint;
         merged.back().fit = fit;
+        unplaced.clear();  // inside the joint range now
         continue;
       }
     }
+    flush();
     merged.push_back(std::move(piece));
   }
+  flush();
   return merged;
 }
 

@@ -126,6 +126,26 @@ TEST(LineExtraction, ShortAndPoorlySupportedSegmentsAreRejected) {
   EXPECT_TRUE(ExtractLines(noisy, tight).empty());
 }
 
+// A split threshold of 3σ cuts walls at noise now and then; the merge puts them back together.
+// Without it (no angle difference accepted) half the scans come out with extra segments.
+TEST(LineExtraction, MergeJoinsTheWallsThatNoiseSplit) {
+  const PolygonRoom room = MakePolygonRoom(0.3);
+  auto share_right = [&](const LineExtractionParams& params) {
+    Rng rng(21);
+    int right = 0;
+    for (int k = 0; k < 200; ++k) {
+      right += ExtractLines(ScanPolygonRoom(room, &rng, 0.01, 0.0), params).size() ==
+               room.visible_lines.size();
+    }
+    return right / 200.0;
+  };
+  LineExtractionParams params;
+  params.split_distance_m = 0.03;
+  EXPECT_GE(share_right(params), 0.95);
+  params.merge_max_angle_rad = 0.0;
+  EXPECT_LE(share_right(params), 0.6);
+}
+
 TEST(SplitByEndpointFit, PiecesAreDisjointOrderedAndCoverTheRun) {
   const PolygonRoom room = MakePolygonRoom(0.0);
   const std::vector<BeamPoint> points = ScanToBeamPoints(ScanPolygonRoom(room), 30.0);

@@ -73,7 +73,8 @@ struct PointRange {
 std::vector<BeamPoint> ScanToBeamPoints(const LaserScan& scan, double max_usable_range_m);
 
 // Step 2: contiguous runs of `points`, broken where consecutive points are more than max_gap_m
-// apart.
+// apart. Beams dropped in step 1 do not break a run by themselves: a wall with a few no-return
+// beams stays one run, a door (or anything seen through it) does not.
 std::vector<PointRange> SplitAtGaps(std::span<const BeamPoint> points, double max_gap_m);
 
 // Step 3 (the "split" of split-and-merge, iterative end-point fit): `run` cut recursively at its
@@ -82,8 +83,10 @@ std::vector<PointRange> SplitAtGaps(std::span<const BeamPoint> points, double ma
 std::vector<PointRange> SplitByEndpointFit(std::span<const BeamPoint> points, PointRange run,
                                            double split_distance_m);
 
-// All steps: split, fit, merge adjacent collinear segments, reject unsupported ones. Segments come
-// in beam order.
+// All steps: split at gaps and by end-point fit, give the points of pieces too small to keep to
+// the neighbour they fit, merge adjacent collinear pieces, settle which wall the points at a
+// corner belong to (leaving out of both a point within 3σ of either line), reject unsupported
+// segments. Segments come in beam order.
 std::vector<LineSegment> ExtractLines(const LaserScan& scan, const LineExtractionParams& params);
 
 }  // namespace slamkit
