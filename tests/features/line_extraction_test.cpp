@@ -146,6 +146,15 @@ TEST(LineExtraction, MergeJoinsTheWallsThatNoiseSplit) {
   EXPECT_LE(share_right(params), 0.6);
 }
 
+TEST(LineExtraction, ScansWithTooFewReturnsGiveNothing) {
+  EXPECT_TRUE(ExtractFeatures(LaserScan{}).lines.empty());
+  LaserScan scan = ScanPolygonRoom(MakePolygonRoom(0.0));
+  for (float& r : scan.ranges_m) r = static_cast<float>(scan.max_range_m);
+  EXPECT_TRUE(ExtractFeatures(scan).lines.empty());
+  scan.ranges_m[40] = scan.ranges_m[41] = scan.ranges_m[42] = 2.0f;  // three returns: too few
+  EXPECT_TRUE(ExtractFeatures(scan).lines.empty());
+}
+
 TEST(SplitByEndpointFit, PiecesAreDisjointOrderedAndCoverTheRun) {
   const PolygonRoom room = MakePolygonRoom(0.0);
   const std::vector<BeamPoint> points = ScanToBeamPoints(ScanPolygonRoom(room), 30.0);
