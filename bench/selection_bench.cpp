@@ -25,12 +25,12 @@ namespace slamkit {
 namespace {
 
 constexpr std::uint64_t kSeed = 20240611;
-constexpr int kMatched = 10;
+constexpr int kMatched = 10;  // sightings per step, unless a benchmark varies them
 
 // A filter at the origin holding `landmarks` landmarks 1–30 m away in every direction, after a
-// few odometry steps (so that the blocks are correlated), and fresh sightings of kMatched of them.
+// few odometry steps (so that the blocks are correlated), and fresh sightings of `matched` of them.
 struct MappedFilter {
-  explicit MappedFilter(int landmarks)
+  MappedFilter(int landmarks, int matched)
       : ekf(3 + 2 * landmarks), kind(ekf.RegisterKind({2, {}, false})), model(sensor, kind, 5.0) {
     Rng rng(kSeed);
     ekf.AddBlock(kPoseKind, Pose2().vector(), Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal());
@@ -51,8 +51,8 @@ struct MappedFilter {
       }
     }
     ekf.ApplyPendingDowndate();
-    for (int k = 0; k < kMatched; ++k) {
-      const int observed[] = {kPoseKind, blocks[k * landmarks / kMatched]};
+    for (int k = 0; k < matched; ++k) {
+      const int observed[] = {kPoseKind, blocks[k * landmarks / matched]};
       const Eigen::Vector2d z = model.Predict(ekf, observed).z + rng.MultivariateNormal(R);
       sightings.push_back({&model, {observed[0], observed[1]}, 2, z, R});
     }
@@ -95,12 +95,13 @@ double TimeStep(BlockEkf& ekf, const std::vector<MatchedObservation>& sightings,
   return elapsed.count();
 }
 
-// Arguments: landmarks, policy.
+// Arguments: landmarks, policy, matched sightings per step.
 void BM_SelectionStep(benchmark::State& state) {
   const int landmarks = static_cast<int>(state.range(0));
   const int which = static_cast<int>(state.range(1));
+  const int matched = static_cast<int>(state.range(2));
   const tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 1);
-  const MappedFilter mapped(landmarks);
+  const MappedFilter mapped(landmarks, matched);
   const std::unique_ptr<SelectionPolicy> policy = MakePolicy(which);
   SelectAll all;
   SelectionStats stats;
@@ -117,13 +118,27 @@ void BM_SelectionStep(benchmark::State& state) {
   }
   state.SetLabel(PolicyName(which));
   state.counters["N"] = landmarks;
+  state.counters["matched"] = matched;
   state.counters["vs_all"] = policy_s / all_s;
   state.counters["applied"] = stats.applied;
   state.counters["accuracy"] = stats.accuracy().value_or(0.0);
 }
 
 BENCHMARK(BM_SelectionStep)
-    ->ArgsProduct({{50, 100, 200}, {kAll, kCovariance, kEntropy, kEntropyFast}})
+    ->ArgsProduct({{50, 100, 200}, {kAll, kCovariance, kEntropy, kEntropyFast}, {kMatched}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+// The scaling in N (issue 10: up to 2,000) of the policies that stay O(n²) per update; the
+// dense entropy policy's O(n³) per sighting would take minutes a step there.
+BENCHMARK(BM_SelectionStep)
+    ->Name("BM_SelectionStepLarge")
+    ->ArgsProduct({{500, 1000, 2000}, {kAll, kCovariance, kEntropyFast}, {kMatched}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond);
+// Flat in the sightings per step: the covariance policy's cost is bounded by k_max updates.
+BENCHMARK(BM_SelectionStep)
+    ->Name("BM_SelectionStepSightings")
+    ->ArgsProduct({{500}, {kAll, kCovariance}, {5, 10, 20, 40}})
     ->UseManualTime()
     ->Unit(benchmark::kMicrosecond);
 
