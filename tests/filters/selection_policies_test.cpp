@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "filters/dense_reference.hpp"
@@ -121,6 +122,23 @@ TEST(SelectByEntropy, DenseGainIsHalfTheLogSensitivity) {
     EXPECT_NEAR(FastInformationGain(session, i), 0.5 * LogSensitivity(session, i), 1e-15);
     if (i == 2) session.Apply(i);
   }
+}
+
+// A covariance with a zero-variance block (a pose known exactly) has no log-determinant: the
+// dense gain falls back to Sylvester's identity, the gain on the rest of the state.
+TEST(SelectByEntropy, SingularCovarianceTakesTheGainFromSylvester) {
+  BlockEkf ekf;
+  const int point = ekf.RegisterKind({2, {}, false});
+  const testing::PointFixModel fix;
+  const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();
+  ekf.AddBlock(kPoseKind, Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero());
+  const int l = ekf.AddBlock(point, Eigen::Vector2d(1, 2), I);
+  std::vector<MatchedObservation> matched = {{&fix, {l}, 1, Eigen::Vector2d(1.1, 2.0), 0.01 * I}};
+  BlockSelectionSession session(ekf, matched);
+  ASSERT_FALSE(std::isfinite(session.LogDetCovariance()));
+  EXPECT_NEAR(DenseInformationGain(session, 0), std::log(101.0), 1e-12);
+  SelectByEntropy({.min_gain_nats = 4.0}).Select(session);
+  EXPECT_TRUE(session.applied(0));
 }
 
 }  // namespace
