@@ -120,6 +120,7 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   updates_ = 0;
   health_checks_ = 0;
   unchecked_ = true;
+  selection_stats_ = {};
 }
 
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1).
@@ -195,8 +196,9 @@ void EkfSlam::SelectAndUpdate(std::span<const PointObservation> part,
     }
   }
   if (matched.empty()) return;
-  BlockSelectionSession session(ekf_, std::move(matched));
+  BlockSelectionSession session(ekf_, std::move(matched), params_.selection_diagnostics);
   selection_->Select(session);
+  selection_stats_.Add(session.stats());
 }
 
 // SPEC S2, Eq. 8 for every observation association called new; all landmarks it names are
@@ -227,6 +229,7 @@ void EkfSlam::RunPipeline(std::span<const PointObservation> part, std::vector<ch
 
 std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservation> observations) {
   CheckFinite(observations);
+  selection_stats_ = {};
   std::vector<AssociationDecision> decisions;
   decisions.reserve(observations.size());
   // A landmark takes at most one sighting per scan: two sightings are two landmarks.

@@ -50,6 +50,11 @@ struct EkfSlamParams {
   // When the state's health is checked (finite, symmetric, PSD; see StateHealthParams for the
   // schedule): every update in Debug and sanitizer builds, at output in Release.
   StateHealthParams health;
+  // Whether each step also runs the full sequential update of every matched observation on a
+  // copy of the filter (an O(n²) copy per step, per observation on the per-observation
+  // schedule), so that LastSelectionStats() has the accuracy ratio of SPEC S1, Eq. 24. Off in
+  // normal runs: it would cost what selection saves.
+  bool selection_diagnostics = false;
 
   bool known_association() const { return association_method == AssociationMethod::kKnown; }
 };
@@ -63,7 +68,9 @@ std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params);
 // The updates of one Update() share one deferred covariance downdate (see BlockEkf).
 class EkfSlam final : public LandmarkSlamFilter {
  public:
-  // `associator` defaults to the one params names, `selection` to SelectAll.
+  // `associator` defaults to the one params names, `selection` to SelectAll. A policy that ranks
+  // the scan (SPEC S1 items 2 and 3) needs UpdateSchedule::kPerScan: per observation, it is
+  // offered one observation at a time.
   EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motion,
           std::unique_ptr<PointSensorModel> sensor, std::unique_ptr<Associator> associator = {},
           std::unique_ptr<SelectionPolicy> selection = {});
@@ -108,6 +115,8 @@ class EkfSlam final : public LandmarkSlamFilter {
   Eigen::VectorXd State() const { return ekf_.State(); }
   const EkfSlamParams& params() const { return params_; }
   const BlockEkf& ekf() const { return ekf_; }
+  // What the selection policy did in the last Update() (all parts of the scan together).
+  const SelectionStats& LastSelectionStats() const { return selection_stats_; }
 
  private:
   class ScanContext;
@@ -134,6 +143,7 @@ class EkfSlam final : public LandmarkSlamFilter {
   std::unique_ptr<PointSensorModel> sensor_;
   std::unique_ptr<Associator> associator_;
   std::unique_ptr<SelectionPolicy> selection_;
+  SelectionStats selection_stats_;
   BlockEkf ekf_;
   int point_kind_ = -1;
   PointLandmarkModel point_model_;
