@@ -1,6 +1,7 @@
 #include "slamkit/runners/grid_config.hpp"
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -136,7 +137,12 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   m.Read("stt", &p.motion.stt, Bound::kNonNegative);
   s.Read("usable_range_m", &p.usable_range_m, Bound::kPositive);
   s.Read("misses_spare_scan_hits", &p.misses_spare_scan_hits);
-  s.Read("no_return_ray_length_m", &p.no_return_ray_length_m, Bound::kNonNegative);
+  // null (as metrics.json writes infinity): up to the usable range.
+  if (s.Has("no_return_ray_length_m") && s.Get("no_return_ray_length_m").IsNull()) {
+    p.no_return_ray_length_m = std::numeric_limits<double>::infinity();
+  } else {
+    s.Read("no_return_ray_length_m", &p.no_return_ray_length_m, Bound::kNonNegative);
+  }
   ReadMatcher(s.Child("matcher", kMatcherKeys), &p.matcher);
   s.Read("widen_below_typical_score", &p.widen_below_typical_score, Bound::kNonNegative);
   p.proposal = ProposalOf(config::ReadChoice(s, "proposal", kProposals, ProposalIndex(p.proposal)));
