@@ -1,5 +1,6 @@
 #include "slamkit/filters/feature_ekf_slam.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -7,6 +8,8 @@ namespace slamkit {
 namespace {
 
 const BlockKind kCornerKind{2, {}, false, nullptr};
+// Of the pseudo-observation that fuses two line landmarks: (0.1 mm)², (0.1 mrad)².
+constexpr double kSameLineVariance = 1e-8;
 
 RangeBearingParams CornerSensorParams(const FeatureEkfSlamParams& params) {
   RangeBearingParams p;
@@ -155,6 +158,7 @@ FeatureDecisions FeatureEkfSlam::Update(const ScanFeatures& robot_frame) {
   }
   ekf_.ApplyPendingDowndate();  // also brings the lines back to ρ ≥ 0
   ExtendMatchedLines(robot_frame, d);
+  FuseMetLines(d);
   AugmentNew(robot_frame, corners, d);
   return d;
 }
@@ -165,13 +169,19 @@ std::vector<MatchedObservation> FeatureEkfSlam::Matched(
   std::vector<MatchedObservation> matched;
   for (std::size_t i = 0; i < scan.lines.size(); ++i) {
     if (d.lines[i].kind != AssociationDecision::Kind::kMatched) continue;
-    matched.push_back({&line_model_, {kPoseBlock, lines_.Block(d.lines[i].landmark)}, 2,
-                       LineVector(scan.lines[i].line), scan.lines[i].covariance});
+    matched.push_back({&line_model_,
+                       {kPoseBlock, lines_.Block(d.lines[i].landmark)},
+                       2,
+                       LineVector(scan.lines[i].line),
+                       scan.lines[i].covariance});
   }
   for (std::size_t i = 0; i < corners.size(); ++i) {
     if (d.corners[i].kind != AssociationDecision::Kind::kMatched) continue;
-    matched.push_back({&corner_model_, {kPoseBlock, corner_blocks_[d.corners[i].landmark]}, 2,
-                       corners[i].z, corners[i].R});
+    matched.push_back({&corner_model_,
+                       {kPoseBlock, corner_blocks_[d.corners[i].landmark]},
+                       2,
+                       corners[i].z,
+                       corners[i].R});
   }
   return matched;
 }
@@ -188,10 +198,54 @@ void FeatureEkfSlam::ExtendMatchedLines(const ScanFeatures& scan, const FeatureD
   }
 }
 
+int FeatureEkfSlam::NumActiveLines() const {
+  int n = 0;
+  for (int i = 0; i < lines_.size(); ++i) n += lines_.Active(i);
+  return n;
+}
+
+// The pseudo-observation l_i − l_j = 0 of two line landmarks (H = [I, −I], a tiny R).
+Linearisation FeatureEkfSlam::SameLine(int i, int j) const {
+  const PolarLine a = Line(i), b = Line(j);
+  Linearisation c;
+  c.innovation = -Eigen::Vector2d(a.rho_m - b.rho_m, WrapAngle(a.alpha_rad - b.alpha_rad));
+  c.H.Add(lines_.Block(i), BlockMatrix::Identity(2, 2));
+  c.H.Add(lines_.Block(j), -BlockMatrix::Identity(2, 2));
+  c.R = BlockMatrix::Identity(2, 2) * kSameLineVariance;
+  return c;
+}
+
+// Two landmarks started from glimpses of one wall that did not overlap (seen through two doors)
+// meet once its extent has grown: a landmark matched in this scan whose extent now overlaps
+// another's, with (ρ, α) compatible (l_i − l_j within the χ² gate of its covariance), is fused
+// with it by the pseudo-observation l_i − l_j = 0, and the later of the two is merged into the
+// earlier. (The merged block stays in the state, tied to the other: BlockEkf removes no block.)
+void FeatureEkfSlam::FuseMetLines(const FeatureDecisions& d) {
+  for (const AssociationDecision& m : d.lines) {
+    if (m.kind != AssociationDecision::Kind::kMatched || !lines_.Active(m.landmark)) continue;
+    int i = m.landmark;
+    for (int j = 0; j < lines_.size(); ++j) {
+      if (j == i || !lines_.Active(j)) continue;
+      const LineExtent &a = lines_.Extent(i), &b = lines_.Extent(j);
+      const PolarLine l = Line(i);
+      if (std::abs(WrapAngle(l.alpha_rad - Line(j).alpha_rad)) > 0.5 ||
+          SegmentOverlapM(a.start_m, a.end_m, b.start_m, b.end_m, l.alpha_rad) <= 0.0) {
+        continue;
+      }
+      const Linearisation c = SameLine(i, j);
+      if (ekf_.MahalanobisSquared(c) >= params_.lines.gate_chi2) continue;
+      ekf_.Update(c);
+      ekf_.ApplyPendingDowndate();
+      const int into = std::min(i, j);
+      lines_.Merge(std::max(i, j), into, Line(into));
+      i = into;
+    }
+  }
+}
+
 // SPEC S2, Eq. 8 (state augmentation) for every new line and corner.
 void FeatureEkfSlam::AugmentNew(const ScanFeatures& scan,
-                                const std::vector<PointObservation>& corners,
-                                FeatureDecisions& d) {
+                                const std::vector<PointObservation>& corners, FeatureDecisions& d) {
   const int observers[] = {kPoseBlock};
   for (std::size_t i = 0; i < scan.lines.size(); ++i) {
     if (d.lines[i].kind != AssociationDecision::Kind::kNew) continue;

@@ -13,7 +13,7 @@ int LineMap::Add(int block, const PolarLine& line, const Eigen::Vector2d& a,
   LineExtent extent;
   extent.start_m = a;
   extent.end_m = a;
-  entries_.push_back({block, extent});
+  entries_.push_back({block, extent, -1});
   Extend(size() - 1, line, a, b);
   return size() - 1;
 }
@@ -30,10 +30,16 @@ void LineMap::Extend(int landmark, const PolarLine& line, const Eigen::Vector2d&
     lo = std::min(lo, t.dot(p));
     hi = std::max(hi, t.dot(p));
   }
-  const Eigen::Vector2d foot = line.rho_m * Eigen::Vector2d(std::cos(line.alpha_rad),
-                                                            std::sin(line.alpha_rad));
+  const Eigen::Vector2d foot =
+      line.rho_m * Eigen::Vector2d(std::cos(line.alpha_rad), std::sin(line.alpha_rad));
   extent.start_m = foot + lo * t;
   extent.end_m = foot + hi * t;
+}
+
+void LineMap::Merge(int from, int into, const PolarLine& into_line) {
+  const LineExtent other = entries_[from].extent;
+  Extend(into, into_line, other.start_m, other.end_m);
+  entries_[from].merged_into = into;
 }
 
 std::vector<AssociationDecision> LineAssociator::Associate(
@@ -66,7 +72,7 @@ AssociationDecision LineAssociator::Decide(const BlockEkf& ekf, int pose_block,
   bool separated = true;
   for (int k = 0; k < map.size(); ++k) {
     const int blocks[] = {pose_block, map.Block(k)};
-    if (!model.Gate(ekf, blocks)) continue;
+    if (!map.Active(k) || !model.Gate(ekf, blocks)) continue;
     const LineExtent& extent = map.Extent(k);
     const double alpha = ekf.Mean(map.Block(k))[1];
     if (SegmentOverlapM(extent.start_m, extent.end_m, a, b, alpha) < -params_.overlap_margin_m) {

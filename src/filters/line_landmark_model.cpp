@@ -33,13 +33,12 @@ BlockVector LineVector(const PolarLine& line) {
   return v;
 }
 
-BlockPrediction LineLandmarkModel::Predict(const BlockEkf& ekf,
-                                           std::span<const int> blocks) const {
+BlockPrediction LineLandmarkModel::Predict(const BlockEkf& ekf, std::span<const int> blocks) const {
   Eigen::Matrix<double, 2, 3> J_z_x;
   Eigen::Matrix2d J_z_l;
   BlockPrediction out;
-  out.z = LineVector(PredictLine(ekf.PoseOf(blocks[0]), LineOf(ekf.Mean(blocks[1])), &J_z_x,
-                                 &J_z_l));
+  out.z =
+      LineVector(PredictLine(ekf.PoseOf(blocks[0]), LineOf(ekf.Mean(blocks[1])), &J_z_x, &J_z_l));
   out.J_z_blocks.Add(blocks[0], J_z_x);
   out.J_z_blocks.Add(blocks[1], J_z_l);
   return out;

@@ -68,8 +68,7 @@ TEST(LineLandmarkModel, PredictJacobiansMatchCentralDifferencesThroughTheBlockEk
     const auto g_z = [&](const Eigen::VectorXd& v) {
       return Eigen::VectorXd(model.Invert(s.ekf, std::span<const int>(blocks, 1), v).mean);
     };
-    EXPECT_LT(MaxAbsDiff(inv.J_new_z, testing::NumericJacobian(g_z, Eigen::VectorXd(z), 1)),
-              1e-6);
+    EXPECT_LT(MaxAbsDiff(inv.J_new_z, testing::NumericJacobian(g_z, Eigen::VectorXd(z), 1)), 1e-6);
   }
   EXPECT_GT(flipped, 20) << "the far side of the lines should be covered";
 }
@@ -81,7 +80,8 @@ TEST(LineLandmarkModel, InnovationWrapsAlphaAndGateRejectsLinesThroughTheRobot) 
   EXPECT_FALSE(model.Gate(s.ekf, blocks)) << "predicted ρ = 0.1 m < 0.3 m";
   PoseAndLine far(Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector2d(1.1, 0.0));
   EXPECT_TRUE(model.Gate(far.ekf, blocks));
-  const BlockVector nu = model.Innovation(LineVector({2.0, kPi - 0.01}), LineVector({2.1, -kPi + 0.01}));
+  const BlockVector nu =
+      model.Innovation(LineVector({2.0, kPi - 0.01}), LineVector({2.1, -kPi + 0.01}));
   EXPECT_NEAR(nu[0], -0.1, 1e-12);
   EXPECT_NEAR(nu[1], -0.02, 1e-12);
 }
@@ -152,6 +152,7 @@ TEST(FeatureEkfSlam, TwoCollinearWallsFiveMetresApartAreTwoLandmarks) {
   scan.lines = {Wall(2.0, kPi / 2, -7.5, -2.5), Wall(2.0, kPi / 2, 2.5, 7.5)};
   FeatureDecisions d = slam.Update(scan);
   EXPECT_EQ(slam.NumLines(), 2);
+  EXPECT_EQ(slam.NumActiveLines(), 2);
   // Seen again, each matches its own landmark.
   d = slam.Update(scan);
   ASSERT_EQ(d.lines.size(), 2u);
@@ -169,6 +170,28 @@ TEST(FeatureEkfSlam, TwoCollinearWallsFiveMetresApartAreTwoLandmarks) {
   const LineExtent& e = slam.LineExtentOf(0);
   EXPECT_NEAR(std::min(e.start_m.x(), e.end_m.x()), 2.2, 0.05);
   EXPECT_NEAR(std::max(e.start_m.x(), e.end_m.x()), 7.5, 0.05);
+}
+
+// Two glimpses of one wall 1 m apart (beyond the overlap margin) start two landmarks; a sighting
+// that spans both matches one, whose extent then meets the other's: the two are fused into one.
+TEST(FeatureEkfSlam, LandmarksOfOneWallAreFusedWhenTheirExtentsMeet) {
+  FeatureEkfSlam slam = MakeSlam();
+  ScanFeatures glimpses;
+  glimpses.lines = {Wall(2.0, kPi / 2, -3.0, -0.5), Wall(2.02, kPi / 2 + 0.005, 0.5, 3.0)};
+  slam.Update(glimpses);
+  ASSERT_EQ(slam.NumActiveLines(), 2);
+  ScanFeatures whole;
+  whole.lines = {Wall(2.01, kPi / 2, -2.0, 2.0)};
+  const FeatureDecisions d = slam.Update(whole);
+  EXPECT_EQ(d.lines[0].kind, AssociationDecision::Kind::kMatched);
+  EXPECT_EQ(slam.NumActiveLines(), 1);
+  EXPECT_EQ(slam.LineMergedInto(1), 0);
+  EXPECT_NEAR(slam.Line(0).rho_m, slam.Line(1).rho_m, 1e-3);
+  EXPECT_NEAR(slam.Line(0).alpha_rad, slam.Line(1).alpha_rad, 1e-3);
+  const LineExtent& e = slam.LineExtentOf(0);
+  EXPECT_NEAR(std::abs(e.end_m.x() - e.start_m.x()), 6.0, 0.05);
+  // The merged landmark is no candidate any more: the next sighting matches landmark 0.
+  EXPECT_EQ(slam.Update(whole).lines[0].landmark, 0);
 }
 
 TEST(FeatureEkfSlam, ShortSightingsStartNoLandmark) {

@@ -66,13 +66,19 @@ class FeatureEkfSlam {
   // SPEC S2, Eq. 2: moves the pose with control `u` (noise: `control_noise` or the model's).
   void Predict(const Control& u, double dt_s, const ControlCovariance* control_noise = nullptr);
   // One scan's features in the robot frame (ToRobotFrame): association, selection, sequential
-  // updates and augmentation (SPEC S1 items 1-3). Throws std::invalid_argument on a non-finite
-  // feature (before any change).
+  // updates and augmentation (SPEC S1 items 1-3); then two line landmarks of one wall that the
+  // scan's extents made meet are fused (FuseMetLines in the source). Throws
+  // std::invalid_argument on a non-finite feature (before any change).
   FeatureDecisions Update(const ScanFeatures& robot_frame);
 
   Pose2 pose() const { return ekf_.PoseOf(kPoseBlock); }
   Eigen::Matrix3d PoseCovariance() const { return ekf_.CovarianceBlock(kPoseBlock, kPoseBlock); }
+  // Line landmarks ever started, including those merged into another (see LineMergedInto).
   int NumLines() const { return lines_.size(); }
+  // Line landmarks of their own: one per wall.
+  int NumActiveLines() const;
+  // The line `line` was fused with and merged into (same wall, see Update()), or -1.
+  int LineMergedInto(int line) const { return lines_.MergedInto(line); }
   PolarLine Line(int line) const { return LineOf(ekf_.Mean(lines_.Block(line))); }
   Eigen::Matrix2d LineCovariance(int line) const;
   const LineExtent& LineExtentOf(int line) const { return lines_.Extent(line); }
@@ -90,6 +96,8 @@ class FeatureEkfSlam {
   std::vector<MatchedObservation> Matched(const ScanFeatures& scan, const FeatureDecisions& d,
                                           const std::vector<PointObservation>& corners) const;
   void ExtendMatchedLines(const ScanFeatures& scan, const FeatureDecisions& d);
+  Linearisation SameLine(int i, int j) const;
+  void FuseMetLines(const FeatureDecisions& d);
   void AugmentNew(const ScanFeatures& scan, const std::vector<PointObservation>& corners,
                   FeatureDecisions& d);
 

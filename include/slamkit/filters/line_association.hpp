@@ -48,14 +48,22 @@ class LineMap {
   void Extend(int landmark, const PolarLine& line, const Eigen::Vector2d& a,
               const Eigen::Vector2d& b);
 
+  // Landmark `from` is the same wall as `into` (their estimates were fused): `into`'s extent
+  // grows to cover `from`'s, and `from` is no longer offered to association.
+  void Merge(int from, int into, const PolarLine& into_line);
+
   int size() const { return static_cast<int>(entries_.size()); }
   int Block(int landmark) const { return entries_[landmark].block; }
   const LineExtent& Extent(int landmark) const { return entries_[landmark].extent; }
+  // The landmark `landmark` was merged into, or -1 while it is a landmark of its own.
+  int MergedInto(int landmark) const { return entries_[landmark].merged_into; }
+  bool Active(int landmark) const { return entries_[landmark].merged_into < 0; }
 
  private:
   struct Entry {
     int block;
     LineExtent extent;
+    int merged_into = -1;
   };
   std::vector<Entry> entries_;
 };
