@@ -57,19 +57,17 @@ std::vector<AssociationDecision> LineAssociator::Associate(
 }
 
 // SPEC S1 (line association): overlap first (cheap, and what tells collinear walls apart), then
-// the Mahalanobis distance on the survivors; nearest neighbour.
-AssociationDecision LineAssociator::Decide(const BlockEkf& ekf, int pose_block,
-                                           const LineLandmarkModel& model, const LineMap& map,
-                                           const LineSegment& sighting,
-                                           const std::vector<char>& taken) const {
+// the Mahalanobis distance on the survivors.
+LineAssociator::Nearest LineAssociator::NearestOverlapping(const BlockEkf& ekf, int pose_block,
+                                                           const LineLandmarkModel& model,
+                                                           const LineMap& map,
+                                                           const LineSegment& sighting) const {
   const Pose2 x = ekf.PoseOf(pose_block);
   const Eigen::Vector2d a = x.TransformFrom(sighting.start_m);
   const Eigen::Vector2d b = x.TransformFrom(sighting.end_m);
   const BlockVector z = LineVector(sighting.line);
   const BlockMatrix R = sighting.covariance;
-  AssociationDecision best;
-  best.distance_chi2 = std::numeric_limits<double>::infinity();
-  bool separated = true;
+  Nearest nearest;
   for (int k = 0; k < map.size(); ++k) {
     const int blocks[] = {pose_block, map.Block(k)};
     if (!map.Active(k) || !model.Gate(ekf, blocks)) continue;
@@ -81,25 +79,36 @@ AssociationDecision LineAssociator::Decide(const BlockEkf& ekf, int pose_block,
     const Linearisation lin = Linearise(model, ekf, blocks, z, R);
     if (std::abs(lin.innovation[0]) < params_.new_min_separation_rho_m &&
         std::abs(lin.innovation[1]) < params_.new_min_separation_alpha_rad) {
-      separated = false;
+      nearest.separated = false;
     }
     const double d2 = ekf.MahalanobisSquared(lin);
-    if (d2 < best.distance_chi2) {
-      best.distance_chi2 = d2;
-      best.landmark = k;
+    if (d2 < nearest.distance_chi2) {
+      nearest.distance_chi2 = d2;
+      nearest.landmark = k;
     }
   }
-  if (best.distance_chi2 < params_.gate_chi2 && !taken[best.landmark]) {
-    best.kind = AssociationDecision::Kind::kMatched;
-    return best;
+  return nearest;
+}
+
+// Nearest neighbour among the compatible landmarks; the rules for a new one.
+AssociationDecision LineAssociator::Decide(const BlockEkf& ekf, int pose_block,
+                                           const LineLandmarkModel& model, const LineMap& map,
+                                           const LineSegment& sighting,
+                                           const std::vector<char>& taken) const {
+  const Nearest nearest = NearestOverlapping(ekf, pose_block, model, map, sighting);
+  AssociationDecision d;
+  d.distance_chi2 = nearest.distance_chi2;
+  if (nearest.distance_chi2 < params_.gate_chi2 && !taken[nearest.landmark]) {
+    d.kind = AssociationDecision::Kind::kMatched;
+    d.landmark = nearest.landmark;
+    return d;
   }
-  const bool can_start = separated && sighting.LengthM() >= params_.min_new_length_m &&
+  const bool can_start = nearest.separated && sighting.LengthM() >= params_.min_new_length_m &&
                          sighting.line.rho_m >= model.min_rho_m();
-  best.kind = best.distance_chi2 >= params_.new_landmark_chi2 && can_start
-                  ? AssociationDecision::Kind::kNew
-                  : AssociationDecision::Kind::kDropped;
-  best.landmark = -1;
-  return best;
+  d.kind = nearest.distance_chi2 >= params_.new_landmark_chi2 && can_start
+               ? AssociationDecision::Kind::kNew
+               : AssociationDecision::Kind::kDropped;
+  return d;
 }
 
 }  // namespace slamkit

@@ -36,15 +36,16 @@ Eigen::VectorXd PredictAt(const Eigen::Vector3d& x, const Eigen::Vector2d& l) {
   return Eigen::Vector2d(model.Predict(s.ekf, blocks).z);
 }
 
-// Predict's Jacobians against central differences of Predict itself, at random poses and lines,
-// on both sides of the line (ρ flips), with α near ±π; lines within 0.3 m of the robot are left
-// out (the flip makes ρ non-differentiable at 0; the gate keeps those out of the filter).
+// Predict's and Invert's Jacobians against central differences of the model itself, at random
+// poses and lines, on both sides of the line (ρ flips), with α near ±π; lines within 0.3 m of the
+// robot (or of the world origin, for Invert) are left out: the flip makes ρ non-differentiable
+// at 0, and the gate keeps those out of the filter.
 TEST(LineLandmarkModel, PredictJacobiansMatchCentralDifferencesThroughTheBlockEkf) {
   Rng rng(11);
   int flipped = 0, tested = 0;
   while (tested < 200) {
     const Eigen::Vector3d x = testing::RandomPose(rng, 5.0).vector();
-    Eigen::Vector2d l(rng.Uniform(0.0, 6.0), rng.Uniform(-kPi, kPi));
+    Eigen::Vector2d l(rng.Uniform(0.3, 6.0), rng.Uniform(-kPi, kPi));
     if (tested % 4 == 0) l[1] = WrapLineAngle(kPi - rng.Uniform(-0.01, 0.01));
     const double rho_robot = l[0] - x[0] * std::cos(l[1]) - x[1] * std::sin(l[1]);
     if (std::abs(rho_robot) < 0.3) continue;
@@ -69,6 +70,12 @@ TEST(LineLandmarkModel, PredictJacobiansMatchCentralDifferencesThroughTheBlockEk
       return Eigen::VectorXd(model.Invert(s.ekf, std::span<const int>(blocks, 1), v).mean);
     };
     EXPECT_LT(MaxAbsDiff(inv.J_new_z, testing::NumericJacobian(g_z, Eigen::VectorXd(z), 1)), 1e-6);
+    const auto g_x = [&](const Eigen::VectorXd& v) {
+      const PoseAndLine moved(v, l);
+      return Eigen::VectorXd(model.Invert(moved.ekf, std::span<const int>(blocks, 1), z).mean);
+    };
+    ASSERT_EQ(inv.J_new_blocks.size, 1);
+    EXPECT_LT(MaxAbsDiff(inv.J_new_blocks.items[0].J, testing::NumericJacobian(g_x, x, 1)), 1e-6);
   }
   EXPECT_GT(flipped, 20) << "the far side of the lines should be covered";
 }

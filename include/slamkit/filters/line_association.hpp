@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -87,6 +88,15 @@ class LineAssociator {
   const LineAssociationParams& params() const { return params_; }
 
  private:
+  // The nearest active, gated, overlapping landmark and whether the sighting is separated from
+  // all of those (new_min_separation_*).
+  struct Nearest {
+    int landmark = -1;
+    double distance_chi2 = std::numeric_limits<double>::infinity();
+    bool separated = true;
+  };
+  Nearest NearestOverlapping(const BlockEkf& ekf, int pose_block, const LineLandmarkModel& model,
+                             const LineMap& map, const LineSegment& sighting) const;
   AssociationDecision Decide(const BlockEkf& ekf, int pose_block, const LineLandmarkModel& model,
                              const LineMap& map, const LineSegment& sighting,
                              const std::vector<char>& taken) const;
