@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <set>
@@ -58,6 +59,9 @@ struct Result {
   double odometry_mean_error_m = 0.0;
   double mean_nees = 0.0;
   double seconds = 0.0;
+  double mean_accuracy = 0.0;  // SPEC S1, Eq. 24, over the steps with matches
+  long matched = 0;            // sightings matched, and of them applied, over the run
+  long applied = 0;
   int lines = 0;
   int merged = 0;
   int corners = 0;
@@ -116,13 +120,15 @@ Result RunFeatureSlam(std::unique_ptr<SelectionPolicy> policy) {
   OdometryParams odometry;  // GridSimParams: σ_v dt = 5 mm, σ_ω dt = 2 mrad per step, inflated
   odometry.sigma_xy_m = 0.0075;
   odometry.sigma_theta_rad = 0.003;
-  FeatureEkfSlam slam(FeatureEkfSlamParams{}, std::make_unique<OdometryModel>(odometry),
-                      std::move(policy));
+  FeatureEkfSlamParams params;
+  params.selection_diagnostics = true;  // the accuracy ratio of SPEC S1, Eq. 24, for the record
+  FeatureEkfSlam slam(params, std::make_unique<OdometryModel>(odometry), std::move(policy));
   slam.Reset(run.sim.truth[0].pose);
   LineExtractionParams extraction;
   extraction.max_usable_range_m = 10.0;
   extraction.sigma_range_m = 0.01;
   Result r;
+  int accuracy_steps = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < run.sim.scans.size(); ++k) {
     const LaserScan& scan = run.sim.scans[k];
@@ -131,6 +137,13 @@ Result RunFeatureSlam(std::unique_ptr<SelectionPolicy> policy) {
       slam.Predict(u.vector(), 0.1);
     }
     slam.Update(ToRobotFrame(ExtractFeatures(scan, extraction), scan.laser_offset));
+    const SelectionStats& stats = slam.LastSelectionStats();
+    r.matched += stats.candidates;
+    r.applied += stats.applied;
+    if (const auto accuracy = stats.accuracy()) {
+      r.mean_accuracy += *accuracy;
+      ++accuracy_steps;
+    }
     const Pose2& truth = run.sim.truth[k].pose;
     Eigen::Vector3d e = slam.pose().vector() - truth.vector();
     e[2] = WrapAngle(e[2]);
@@ -141,6 +154,7 @@ Result RunFeatureSlam(std::unique_ptr<SelectionPolicy> policy) {
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.mean_nees /= static_cast<double>(run.sim.scans.size() - 1);
   r.mean_error_m /= static_cast<double>(run.sim.scans.size());
+  r.mean_accuracy /= std::max(accuracy_steps, 1);
   r.odometry_mean_error_m /= static_cast<double>(run.sim.scans.size());
   const Pose2& truth = run.sim.truth.back().pose;
   r.final_error_m = (slam.pose().translation() - truth.translation()).norm();
@@ -156,6 +170,8 @@ Result RunFeatureSlam(std::unique_ptr<SelectionPolicy> policy) {
       "scans in %.2f s\n",
       r.mean_error_m, r.odometry_mean_error_m, r.final_error_m, r.odometry_error_m, r.mean_nees,
       r.lines, r.walls_in_view, r.merged, r.corners, r.duplicates, run.sim.scans.size(), r.seconds);
+  std::printf("%ld of %ld matched sightings applied, mean accuracy ratio %.3f\n", r.applied,
+              r.matched, r.mean_accuracy);
   return r;
 }
 
@@ -169,13 +185,17 @@ void ExpectGoodRun(const Result& r) {
 }
 
 TEST(FeatureEkfSlamRun, OfficeWithSelectAllBeatsOdometryConsistently) {
-  ExpectGoodRun(RunFeatureSlam(std::make_unique<SelectAll>()));
+  const Result r = RunFeatureSlam(std::make_unique<SelectAll>());
+  ExpectGoodRun(r);
+  EXPECT_EQ(r.applied, r.matched);
 }
 
 TEST(FeatureEkfSlamRun, OfficeWithCovarianceSelectionBeatsOdometryConsistently) {
   CovarianceSelectionParams params;
   params.k_max = 3;
-  ExpectGoodRun(RunFeatureSlam(std::make_unique<SelectByCovariance>(params)));
+  const Result r = RunFeatureSlam(std::make_unique<SelectByCovariance>(params));
+  ExpectGoodRun(r);
+  EXPECT_LT(r.applied, r.matched) << "k_max = 3 should have dropped some sightings";
 }
 
 }  // namespace
