@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace slamkit {
 namespace {
@@ -121,6 +122,7 @@ void FeatureEkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   corner_blocks_.clear();
   corner_kinds_.clear();
   selection_stats_ = {};
+  updates_ = 0;
 }
 
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1).
@@ -160,7 +162,17 @@ FeatureDecisions FeatureEkfSlam::Update(const ScanFeatures& robot_frame) {
   ExtendMatchedLines(robot_frame, d);
   FuseMetLines(d);
   AugmentNew(robot_frame, corners, d);
+  ++updates_;
+  if (params_.health.every_update()) {
+    const bool psd = params_.health.PsdDue(updates_, ekf_.StateSize());
+    ekf_.CheckHealth(params_.health, psd,
+                     "FeatureEkfSlam after update " + std::to_string(updates_));
+  }
   return d;
+}
+
+void FeatureEkfSlam::CheckOutputHealth() const {
+  if (params_.health.enabled()) ekf_.CheckHealth(params_.health, true, "FeatureEkfSlam at output");
 }
 
 std::vector<MatchedObservation> FeatureEkfSlam::Matched(

@@ -152,6 +152,7 @@ Result RunFeatureSlam(std::unique_ptr<SelectionPolicy> policy) {
     r.odometry_mean_error_m += (scan.odometry.translation() - truth.translation()).norm();
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  slam.CheckOutputHealth();
   r.mean_nees /= static_cast<double>(run.sim.scans.size() - 1);
   r.mean_error_m /= static_cast<double>(run.sim.scans.size());
   r.mean_accuracy /= std::max(accuracy_steps, 1);

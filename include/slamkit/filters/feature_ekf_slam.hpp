@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/core/state_health.hpp"
 #include "slamkit/features/corners.hpp"
 #include "slamkit/features/scan_features.hpp"
 #include "slamkit/filters/block_ekf.hpp"
@@ -29,6 +30,9 @@ struct FeatureEkfSlamParams {
   double corner_reach_m = 15.0;
   // State entries allocated up front; the state grows by doubling beyond this.
   int initial_capacity = 256;
+  // When the state's health is checked (see StateHealthParams): every update in Debug and
+  // sanitizer builds, at output (CheckOutputHealth) in Release.
+  StateHealthParams health;
   // Whether each step also runs the full update on a copy, for the accuracy ratio of SPEC S1,
   // Eq. 24 in LastSelectionStats() (see EkfSlamParams::selection_diagnostics).
   bool selection_diagnostics = false;
@@ -69,7 +73,10 @@ class FeatureEkfSlam {
   // updates and augmentation (SPEC S1 items 1-3); then two line landmarks of one wall that the
   // scan's extents made meet are fused (FuseMetLines in the source). Throws
   // std::invalid_argument on a non-finite feature (before any change).
+  // With health.every_update(), NumericalError if the resulting state is not healthy.
   FeatureDecisions Update(const ScanFeatures& robot_frame);
+  // The full check (finite, symmetric, PSD) unless health.mode is kOff; NumericalError if it fails.
+  void CheckOutputHealth() const;
 
   Pose2 pose() const { return ekf_.PoseOf(kPoseBlock); }
   Eigen::Matrix3d PoseCovariance() const { return ekf_.CovarianceBlock(kPoseBlock, kPoseBlock); }
@@ -116,6 +123,7 @@ class FeatureEkfSlam {
   std::vector<int> corner_blocks_;
   std::vector<CornerKind> corner_kinds_;  // beside each corner's block: the association constraint
   SelectionStats selection_stats_;
+  long updates_ = 0;  // since Reset(), to name the step a health check failed at
 };
 
 }  // namespace slamkit
