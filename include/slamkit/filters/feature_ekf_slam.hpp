@@ -99,7 +99,6 @@ class FeatureEkfSlam {
  private:
   class CornerContext;
   static constexpr int kPoseBlock = 0;
-  void RegisterKinds();
   std::vector<MatchedObservation> Matched(const ScanFeatures& scan, const FeatureDecisions& d,
                                           const std::vector<PointObservation>& corners) const;
   void ExtendMatchedLines(const ScanFeatures& scan, const FeatureDecisions& d);
