@@ -33,6 +33,10 @@ int BlockEkf::RegisterKind(const BlockKind& kind) {
   if (kind.dim < 1 || kind.dim > kMaxBlockDim || (kind.is_pose && kind.dim != 3)) {
     throw std::invalid_argument("BlockEkf::RegisterKind: unsupported block dimension");
   }
+  if (kind.is_pose && kind.normalise) {
+    // Pose columns are cached during an update; a change of coordinates would have to follow them.
+    throw std::invalid_argument("BlockEkf::RegisterKind: a pose kind cannot have a normalise step");
+  }
   kinds_.push_back(kind);
   return static_cast<int>(kinds_.size()) - 1;
 }
@@ -46,6 +50,7 @@ void BlockEkf::Clear() {
   pose_blocks_.clear();
   pose_slot_.clear();
   angle_indices_.clear();
+  normalised_blocks_.clear();
   n_ = 0;
   m_ = 0;
 }
@@ -86,6 +91,7 @@ int BlockEkf::AppendBlock(int kind) {
   blocks_.push_back({kind, n_, dim});
   pose_slot_.push_back(-1);
   for (const int a : kinds_[kind].angle_components) angle_indices_.push_back(n_ + a);
+  if (kinds_[kind].normalise) normalised_blocks_.push_back(index);
   n_ += dim;
   if (kinds_[kind].is_pose) {
     // A new pose slot: the cache is rebuilt from the current columns at the next update.
@@ -152,6 +158,33 @@ void BlockEkf::PredictPose(int block, const Pose2& moved, const Eigen::Matrix3d&
 
 void BlockEkf::WrapAngles() {
   for (const int i : angle_indices_) x_[i] = WrapAngle(x_[i]);
+}
+
+void BlockEkf::NormaliseBlocks() {
+  for (const int b : normalised_blocks_) {
+    const Block& block = blocks_[b];
+    BlockVector mean = x_.segment(block.offset, block.dim);
+    BlockMatrix J;
+    if (!kinds_[block.kind].normalise(mean, &J)) continue;
+    x_.segment(block.offset, block.dim) = mean;
+    TransformBlockRows(b, J);
+  }
+}
+
+// P ← T P Tᵀ with T the identity but for J on the block: its column above, its diagonal block
+// and its row to the right, as PredictPose does for a pose.
+void BlockEkf::TransformBlockRows(int block, const BlockMatrix& J) {
+  const int o = blocks_[block].offset, d = blocks_[block].dim;
+  const Eigen::MatrixXd P_bb = P_.block(o, o, d, d).selfadjointView<Eigen::Upper>();
+  P_.block(o, o, d, d) = J * P_bb * J.transpose();
+  if (o > 0) {
+    auto P_ab = P_.block(0, o, o, d);
+    P_ab = (P_ab * J.transpose()).eval();
+  }
+  if (n_ > o + d) {
+    auto P_bc = P_.block(o, o + d, d, n_ - o - d);
+    P_bc = (J * P_bc).eval();
+  }
 }
 
 Eigen::MatrixXd BlockEkf::Covariance() const {

@@ -54,6 +54,7 @@ void BlockEkf::ApplyPendingDowndate() {
     P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= U_j * U_j.transpose();
   });
   m_ = 0;
+  NormaliseBlocks();
 }
 
 // P Hᵀ (n × kZ): H is zero outside the observed blocks, so each costs O(n). Two blocks (pose and

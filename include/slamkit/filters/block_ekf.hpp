@@ -24,13 +24,20 @@ using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxBlockDim, 1>
 using BlockMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockDim, kMaxBlockDim>;
 
+// Brings a block's mean back to its canonical form (a world line's ρ ≥ 0, SPEC S1) by an affine
+// change of coordinates b' = J b + c. Returns false when `mean` is canonical already; otherwise
+// rewrites it and sets *J (dim × dim, invertible) so that the covariance follows the change.
+using BlockNormaliser = bool (*)(BlockVector& mean, BlockMatrix* J);
+
 // What one kind of block in the state is: its dimension and which of its components are angles
 // (kept wrapped to [-π, π) after every update). Pose blocks get their covariance columns cached
-// during a deferred update, since nearly every observation touches a pose.
+// during a deferred update, since nearly every observation touches a pose. A non-pose kind may
+// have a `normalise` step, run on each of its blocks when a deferred downdate is applied.
 struct BlockKind {
   int dim = 2;
   std::vector<int> angle_components;
   bool is_pose = false;
+  BlockNormaliser normalise = nullptr;
 };
 
 // The SE(2) vehicle pose (x, y, θ): the kind every BlockEkf registers first, as kind 0.
@@ -121,7 +128,8 @@ class BlockEkf {
   // The joint innovation covariance of several observations (a joint-compatibility test):
   // block (i, j) is H_i P H_jᵀ, plus R_i on the diagonal.
   Eigen::MatrixXd JointInnovationCovariance(std::span<const Linearisation> obs) const;
-  // P₀ ← P₀ − U Uᵀ on the upper triangle, in fixed column blocks run in parallel.
+  // P₀ ← P₀ − U Uᵀ on the upper triangle, in fixed column blocks run in parallel; then the
+  // kinds' normalise steps (see BlockKind), so every block is canonical when nothing is pending.
   void ApplyPendingDowndate();
   bool HasPendingDowndate() const { return m_ > 0; }
 
@@ -186,12 +194,17 @@ class BlockEkf {
   void StartPoseCache();
   void Reserve(int state_size);
   void WrapAngles();
+  // The kinds' normalise steps on every block that has one; needs m_ == 0. O(n) per change.
+  void NormaliseBlocks();
+  // b ← J b on block `block`'s rows and columns of the stored triangle (a non-pose block).
+  void TransformBlockRows(int block, const BlockMatrix& J);
 
   std::vector<BlockKind> kinds_;
   std::vector<Block> blocks_;
   std::vector<int> pose_blocks_;    // indices into blocks_; pose_cols_ holds 3 columns each
   std::vector<int> pose_slot_;      // per block: its 3-column slot in pose_cols_, or -1
   std::vector<int> angle_indices_;  // state indices that are angles
+  std::vector<int> normalised_blocks_;  // blocks whose kind has a normalise step
   int n_ = 0;
   Eigen::VectorXd x_;  // capacity-sized; the first n_ entries are the state
   Eigen::MatrixXd P_;  // capacity-sized; upper triangle of the leading n_×n_ block is valid
