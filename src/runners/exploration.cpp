@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "slamkit/models/unicycle.hpp"
+
 namespace slamkit {
 
 LaserSimParams ExplorationParams::SickLaser() {
@@ -16,22 +18,20 @@ LaserSimParams ExplorationParams::SickLaser() {
 
 namespace {
 
-// The true robot and its odometry, driven one control period at a time.
+// The true robot (noise-free) and its odometry (the command plus noise), driven one control
+// period at a time by the unicycle model.
 struct Robot {
   Pose2 truth;
   Pose2 odometry;
 
-  // The midpoint-heading unicycle step (UnicycleModel's), noise-free for the truth.
-  static Pose2 Move(const Pose2& x, double v, double omega, double dt) {
-    const double heading = x.theta() + 0.5 * omega * dt;
-    return Pose2(x.x() + v * dt * std::cos(heading), x.y() + v * dt * std::sin(heading),
-                 x.theta() + omega * dt);
-  }
   void Drive(const Control& u, const ExplorationParams& params, Rng& rng) {
+    const UnicycleModel unicycle;
     const double dt = params.control_period_s;
-    truth = Move(truth, u(0), u(1), dt);
-    odometry = Move(odometry, u(0) + rng.Normal(0.0, params.sigma_v_mps),
-                    u(1) + rng.Normal(0.0, params.sigma_omega_radps), dt);
+    truth = unicycle.Move(truth, u, dt);
+    Control noisy(2);
+    noisy << u(0) + rng.Normal(0.0, params.sigma_v_mps),
+        u(1) + rng.Normal(0.0, params.sigma_omega_radps);
+    odometry = unicycle.Move(odometry, noisy, dt);
   }
 };
 
