@@ -12,5 +12,6 @@ void RegisterRun(CLI::App& app, int& exit_code);
 void RegisterGrid(CLI::App& app, int& exit_code);
 void RegisterGridSim(CLI::App& app, int& exit_code);
 void RegisterSuite(CLI::App& app, int& exit_code);
+void RegisterExplore(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

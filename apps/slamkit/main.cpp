@@ -41,6 +41,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterGrid(app, exit_code);
   slamkit::app::RegisterGridSim(app, exit_code);
   slamkit::app::RegisterSuite(app, exit_code);
+  slamkit::app::RegisterExplore(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

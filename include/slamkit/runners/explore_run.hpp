@@ -1,0 +1,40 @@
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/models/line_sensor.hpp"
+#include "slamkit/runners/exploration_config.hpp"
+#include "slamkit/sim/floor_plan.hpp"
+
+namespace slamkit {
+
+// A line landmark of the final map: its world line, covariance and the extent it was seen over.
+struct MappedLine {
+  PolarLine line;
+  Eigen::Matrix2d covariance;
+  Eigen::Vector2d start_m;
+  Eigen::Vector2d end_m;
+};
+
+struct ExploreResult {
+  ExplorationRun run;
+  std::vector<double> nees;  // pose NEES (3 dof) per step against the truth
+  std::vector<MappedLine> lines;               // one per wall (merged landmarks left out)
+  std::vector<Eigen::Vector2d> corners;
+  double wall_time_s = 0.0;
+};
+
+// SPEC S1's active loop with the line-and-corner EKF on `plan`, as `config` says.
+ExploreResult RunFeatureExploration(const FloorPlan& plan, const ExplorationConfig& config);
+
+// metrics.json of an exploration: the effective parameters (`params`), the steps, simulated and
+// SLAM times (total, per-step maximum, open-loop), the mean pose NEES with its 95 % band for one
+// run's steps, mean and final position errors of the estimate and of the odometry, the map's
+// line and corner counts, and the explorer's final mode.
+nlohmann::json ExploreMetrics(const ExploreResult& result, const ExplorationConfig& config);
+
+}  // namespace slamkit
