@@ -220,7 +220,7 @@ int FeatureEkfSlam::NumActiveLines() const {
 Linearisation FeatureEkfSlam::SameLine(int i, int j) const {
   const PolarLine a = Line(i), b = Line(j);
   Linearisation c;
-  c.innovation = -Eigen::Vector2d(a.rho_m - b.rho_m, WrapAngle(a.alpha_rad - b.alpha_rad));
+  c.innovation = -LineInnovation(a, b);
   c.H.Add(lines_.Block(i), BlockMatrix::Identity(2, 2));
   c.H.Add(lines_.Block(j), -BlockMatrix::Identity(2, 2));
   c.R = BlockMatrix::Identity(2, 2) * kSameLineVariance;

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "slamkit/core/angle.hpp"
+#include "slamkit/eval/errors.hpp"
 #include "slamkit/runners/feature_exploration.hpp"
 
 namespace slamkit {
@@ -35,7 +36,7 @@ std::vector<double> PoseNees(const ExplorationRun& run,
     const Pose2& x = run.truth[i].pose;
     const Pose2& e = run.estimate[i].pose;
     const Eigen::Vector3d d(e.x() - x.x(), e.y() - x.y(), WrapAngle(e.theta() - x.theta()));
-    nees.push_back(d.dot(covariances[i].ldlt().solve(d)));
+    nees.push_back(Nees(d, covariances[i]));
   }
   return nees;
 }

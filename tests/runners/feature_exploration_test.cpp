@@ -1,12 +1,12 @@
-#include "slamkit/runners/feature_exploration.hpp"
+#include "slamkit/runners/explore_run.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <utility>
 
-#include "slamkit/core/angle.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"
 
 namespace slamkit {
@@ -15,7 +15,7 @@ namespace {
 struct Outcome {
   ExplorationRun run;
   std::vector<double> nees;  // per step, 3 dof
-  double mean_error_m = 0.0;           // position, over the steps
+  double mean_error_m = 0.0;  // position, over the steps
   double odometry_mean_error_m = 0.0;
 };
 
@@ -23,47 +23,20 @@ struct Outcome {
 Outcome Explore(SelectionKind kind, double max_time_s) {
   const FloorPlan plan{ReadFloorPlanFile(std::filesystem::path(SLAMKIT_SOURCE_DIR) /
                                          "examples/plans/office.txt")};
-  ExplorationParams params;
-  params.max_time_s = max_time_s;
-  params.sigma_v_mps = 0.05;  // wheels that slip: odometry the SLAM has to beat
-  params.sigma_omega_radps = 0.05;
-  FeatureSlamParams slam_params;
-  slam_params.selection = kind;
-  slam_params.sigma_v_mps = params.sigma_v_mps;
-  slam_params.sigma_omega_radps = params.sigma_omega_radps;
-  slam_params.control_period_s = params.control_period_s;
-  const Pose2 start(4.0, 15.0, 0.0);
-  FeatureExplorationSlam slam(slam_params, start);
-  // NEES needs the covariance at each step: a thin wrapper records it as the loop runs.
-  struct Recording final : ExplorationSlam {
-    FeatureExplorationSlam* inner;
-    std::vector<Eigen::Matrix3d>* covariances;
-    void Step(const Pose2& d, const LaserScan& s) override {
-      inner->Step(d, s);
-      covariances->push_back(inner->PoseCovariance());
-    }
-    Pose2 Estimate() const override { return inner->Estimate(); }
-    double ModelledCostS() const override { return inner->ModelledCostS(); }
-  };
-  std::vector<Eigen::Matrix3d> covariances;
-  Recording recording;
-  recording.inner = &slam;
-  recording.covariances = &covariances;
-  Rng rng(5);
-  Outcome out{RunExploration(plan, start, recording, params, rng), {}, 0.0, 0.0};
-  for (std::size_t i = 1; i < out.run.truth.size(); ++i) {
-    const Pose2& x = out.run.truth[i].pose;
-    const Pose2& e = out.run.estimate[i].pose;
-    const Eigen::Vector3d err(e.x() - x.x(), e.y() - x.y(), WrapAngle(e.theta() - x.theta()));
-    out.nees.push_back(err.dot(covariances[i].ldlt().solve(err)));
-  }
-  const double n = static_cast<double>(out.run.truth.size());
-  for (std::size_t i = 0; i < out.run.truth.size(); ++i) {
-    const Eigen::Vector2d x = out.run.truth[i].pose.translation();
-    out.mean_error_m += (out.run.estimate[i].pose.translation() - x).norm() / n;
-    out.odometry_mean_error_m += (out.run.odometry[i].pose.translation() - x).norm() / n;
-  }
-  return out;
+  ExplorationConfig config;
+  config.start = Pose2(4.0, 15.0, 0.0);
+  config.seed = 5;
+  config.run.max_time_s = max_time_s;
+  config.run.sigma_v_mps = 0.05;  // wheels that slip: odometry the SLAM has to beat
+  config.run.sigma_omega_radps = 0.05;
+  config.slam.selection = kind;
+  config.slam.sigma_v_mps = config.run.sigma_v_mps;
+  config.slam.sigma_omega_radps = config.run.sigma_omega_radps;
+  config.slam.control_period_s = config.run.control_period_s;
+  ExploreResult r = RunFeatureExploration(plan, config);
+  const nlohmann::json m = ExploreMetrics(r, config);
+  return {std::move(r.run), std::move(r.nees), m["mean_error_m"].get<double>(),
+          m["odometry_mean_error_m"].get<double>()};
 }
 
 double Mean(const std::vector<double>& v) {
