@@ -7,15 +7,6 @@
 
 namespace slamkit {
 
-LaserSimParams ExplorationParams::SickLaser() {
-  LaserSimParams laser;
-  laser.beams = 181;
-  laser.max_range_m = 10.0;
-  laser.range_limit_m = 10.0;
-  laser.sigma_range_m = 0.01;
-  return laser;
-}
-
 namespace {
 
 // The true robot (noise-free) and its odometry (the command plus noise), driven one control

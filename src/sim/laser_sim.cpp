@@ -81,6 +81,15 @@ void CheckRunParams(const GridSimParams& params) {
 
 }  // namespace
 
+LaserSimParams SpecS1Laser() {
+  LaserSimParams laser;
+  laser.beams = 181;
+  laser.max_range_m = 10.0;
+  laser.range_limit_m = 10.0;
+  laser.sigma_range_m = 0.01;
+  return laser;
+}
+
 LaserScan SimulateScan(const FloorPlan& plan, const Pose2& robot_pose,
                        const LaserSimParams& params, Rng& rng) {
   CheckLaserParams(params);

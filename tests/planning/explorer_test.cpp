@@ -68,10 +68,7 @@ FloorPlan WallInTheWay() {
 
 TEST(TangentialEscape, PassesAWallOnTheWayAndKeepsTheGoal) {
   const FloorPlan plan = WallInTheWay();
-  LaserSimParams laser;
-  laser.beams = 181;
-  laser.max_range_m = 10.0;
-  laser.range_limit_m = 10.0;
+  LaserSimParams laser = SpecS1Laser();
   laser.sigma_range_m = 0.0;
   FrontierExplorerParams params;
   Rng rng(3);
@@ -134,9 +131,7 @@ TEST(FrontierExplorer, TurnsInPlaceWithoutFrontiersAndStopsAfterAWholeTurn) {
 TEST(FrontierExplorer, ExploresTheOfficeRoomByRoomWithoutTouchingAWall) {
   const FloorPlan plan{ReadFloorPlanFile(std::filesystem::path(SLAMKIT_SOURCE_DIR) /
                                          "examples/plans/office.txt")};
-  LaserSimParams laser;
-  laser.beams = 181;
-  laser.range_limit_m = 10.0;  // the seed's 10 m; no-return beams read max_range_m
+  const LaserSimParams laser = SpecS1Laser();
   FrontierExplorer explorer;
   Rng rng(11);
   Pose2 x(4.0, 15.0, 0.0);  // in the corridor

@@ -33,12 +33,10 @@ struct ExplorationParams {
   // Odometry noise: each period the odometry integrates the command plus N(0, σ²) on v and ω.
   double sigma_v_mps = 0.02;
   double sigma_omega_radps = 0.02;
-  LaserSimParams laser = SickLaser();
+  LaserSimParams laser = SpecS1Laser();
   FrontierExplorerParams explorer;
   SlamTiming timing = SlamTiming::kModelledCost;
 
-  // The seed's laser: 181 beams over 180°, 10 m used, no-return beams written at 10 m.
-  static LaserSimParams SickLaser();
 };
 
 struct ExplorationRun {

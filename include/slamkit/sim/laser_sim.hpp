@@ -25,6 +25,10 @@ struct LaserSimParams {
   Pose2 laser_offset;            // the laser in the robot frame
 };
 
+// SPEC S1's laser (a SICK as the seed used it): 181 beams over 180°, 1° apart, 10 m used, beams
+// without a return written at 10 m, σ 1 cm.
+LaserSimParams SpecS1Laser();
+
 // One scan from the robot at `robot_pose` (the laser at robot_pose ⊕ laser_offset). Fills ranges,
 // angles, max_range_m and laser_offset; t_s, odometry and logged_pose are left for the caller.
 LaserScan SimulateScan(const FloorPlan& plan, const Pose2& robot_pose,
