@@ -13,5 +13,6 @@ void RegisterGrid(CLI::App& app, int& exit_code);
 void RegisterGridSim(CLI::App& app, int& exit_code);
 void RegisterSuite(CLI::App& app, int& exit_code);
 void RegisterExplore(CLI::App& app, int& exit_code);
+void RegisterFeatures(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

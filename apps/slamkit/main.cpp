@@ -42,6 +42,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterGridSim(app, exit_code);
   slamkit::app::RegisterSuite(app, exit_code);
   slamkit::app::RegisterExplore(app, exit_code);
+  slamkit::app::RegisterFeatures(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -26,14 +26,27 @@ std::string SelectionKindName(SelectionKind kind) {
   return kSelectionNames[static_cast<int>(kind)];
 }
 
-std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(const FeatureSlamParams& params) {
-  switch (params.selection) {
+double CorrectionFlops(SelectionKind kind, const SelectionStats& stats, int state_size) {
+  const double n = state_size;
+  double flops = stats.applied * 2.0 * n * n;
+  if (kind == SelectionKind::kEntropy) flops += stats.candidates * 2.0 * n * n * n / 3.0;
+  return flops;
+}
+
+std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(SelectionKind kind,
+                                                     const CovarianceSelectionParams& covariance,
+                                                     const EntropySelectionParams& entropy) {
+  switch (kind) {
     case SelectionKind::kAll: return std::make_unique<SelectAll>();
-    case SelectionKind::kEntropy: return std::make_unique<SelectByEntropy>(params.entropy);
-    case SelectionKind::kEntropyFast: return std::make_unique<SelectByEntropyFast>(params.entropy);
+    case SelectionKind::kEntropy: return std::make_unique<SelectByEntropy>(entropy);
+    case SelectionKind::kEntropyFast: return std::make_unique<SelectByEntropyFast>(entropy);
     case SelectionKind::kCovariance: break;
   }
-  return std::make_unique<SelectByCovariance>(params.covariance);
+  return std::make_unique<SelectByCovariance>(covariance);
+}
+
+std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(const FeatureSlamParams& params) {
+  return MakeSelectionPolicy(params.selection, params.covariance, params.entropy);
 }
 
 FeatureExplorationSlam::FeatureExplorationSlam(const FeatureSlamParams& params,
@@ -64,11 +77,9 @@ void FeatureExplorationSlam::Step(const Pose2& odometry_delta, const LaserScan& 
   started_ = true;
   last_t_s_ = scan.t_s;
   slam_.Update(ToRobotFrame(ExtractFeatures(scan, params_.extraction), scan.laser_offset));
-  const SelectionStats& stats = slam_.LastSelectionStats();
-  const double n = slam_.ekf().StateSize();
-  double flops = stats.applied * 2.0 * n * n;
-  if (params_.selection == SelectionKind::kEntropy) flops += stats.candidates * 2.0 * n * n * n / 3.0;
-  modelled_cost_s_ = flops / params_.flops_per_second;
+  modelled_cost_s_ =
+      CorrectionFlops(params_.selection, slam_.LastSelectionStats(), slam_.ekf().StateSize()) /
+      params_.flops_per_second;
 }
 
 }  // namespace slamkit

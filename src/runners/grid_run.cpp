@@ -44,6 +44,26 @@ GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params
   return out;
 }
 
+void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceComparison* reference,
+                     nlohmann::json& j) {
+  if (relations) {
+    j["relations"] = relations->count;
+    j["relations_trans_mean_m"] = relations->trans_mean_m;
+    j["relations_trans_std_m"] = relations->trans_std_m;
+    j["relations_rot_mean_deg"] = relations->rot_mean_deg;
+    j["relations_rot_std_deg"] = relations->rot_std_deg;
+  }
+  if (reference) {
+    j["ate_rmse_m"] = reference->ate.rmse_m;
+    j["ate_mean_m"] = reference->ate.mean_m;
+    j["ate_max_m"] = reference->ate.max_m;
+    j["rpe_trans_mean_m"] = reference->rpe.trans_mean_m;
+    j["rpe_trans_std_m"] = reference->rpe.trans_std_m;
+    j["rpe_rot_mean_deg"] = reference->rpe.rot_mean_deg;
+    j["rpe_rot_std_deg"] = reference->rpe.rot_std_deg;
+  }
+}
+
 nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& params,
                            const RelationErrorStats* relations,
                            const ReferenceComparison* reference, double peak_rss_mib) {
@@ -62,22 +82,7 @@ nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& par
                       {"wall_time_s", r.wall_time_s},
                       {"scans_per_s", r.wall_time_s > 0 ? r.scans / r.wall_time_s : 0.0},
                       {"peak_rss_mib", peak_rss_mib}};
-  if (relations) {
-    j["relations"] = relations->count;
-    j["relations_trans_mean_m"] = relations->trans_mean_m;
-    j["relations_trans_std_m"] = relations->trans_std_m;
-    j["relations_rot_mean_deg"] = relations->rot_mean_deg;
-    j["relations_rot_std_deg"] = relations->rot_std_deg;
-  }
-  if (reference) {
-    j["ate_rmse_m"] = reference->ate.rmse_m;
-    j["ate_mean_m"] = reference->ate.mean_m;
-    j["ate_max_m"] = reference->ate.max_m;
-    j["rpe_trans_mean_m"] = reference->rpe.trans_mean_m;
-    j["rpe_trans_std_m"] = reference->rpe.trans_std_m;
-    j["rpe_rot_mean_deg"] = reference->rpe.rot_mean_deg;
-    j["rpe_rot_std_deg"] = reference->rpe.rot_std_deg;
-  }
+  AddErrorMetrics(relations, reference, j);
   return j;
 }
 

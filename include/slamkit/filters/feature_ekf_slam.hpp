@@ -95,6 +95,9 @@ class FeatureEkfSlam {
   const BlockEkf& ekf() const { return ekf_; }
   // What the selection policy did in the last Update().
   const SelectionStats& LastSelectionStats() const { return selection_stats_; }
+  // Turns FeatureEkfSlamParams::selection_diagnostics on or off from the next Update() (its full
+  // update on a copy costs O(n²) per step: a long run may take it on a sample of its steps).
+  void SetSelectionDiagnostics(bool on) { params_.selection_diagnostics = on; }
 
  private:
   class CornerContext;

@@ -37,12 +37,18 @@ struct FeatureSlamParams {
   double flops_per_second = 1.0e9;
 };
 
+// The correction's counted floating-point work in an n-state filter: 2n² per applied update
+// (the covariance downdate), plus, for the dense entropy policy, the two n×n Cholesky
+// factorisations (2n³/3) per candidate that its log-determinants take.
+double CorrectionFlops(SelectionKind kind, const SelectionStats& stats, int state_size);
+
+std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(SelectionKind kind,
+                                                     const CovarianceSelectionParams& covariance,
+                                                     const EntropySelectionParams& entropy);
 std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(const FeatureSlamParams& params);
 
 // The line-and-corner EKF-SLAM of SPEC S1 as the exploration loop's SLAM. Its modelled cost is
-// the correction's counted work: 2n² per applied update (the covariance downdate of an n-state
-// filter) plus, for the dense entropy policy, the two n×n Cholesky factorisations (2n³/3) per
-// candidate that its log-determinants take.
+// the correction's counted work (CorrectionFlops).
 class FeatureExplorationSlam final : public ExplorationSlam {
  public:
   FeatureExplorationSlam(const FeatureSlamParams& params, const Pose2& start);

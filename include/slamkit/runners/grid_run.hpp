@@ -30,6 +30,11 @@ nlohmann::json GridMetrics(const GridRunResult& result, const RbpfGridSlamParams
                            const RelationErrorStats* relations,
                            const ReferenceComparison* reference, double peak_rss_mib);
 
+// The error keys of metrics.json (relations_*, ate_*, rpe_*) for the evaluations given (either
+// may be null).
+void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceComparison* reference,
+                     nlohmann::json& metrics);
+
 // The poses a log gives with its scans (corrected in *-corrected logs), one per scan.
 Trajectory LoggedTrajectory(const CarmenLog& log);
 // The raw odometry at each scan: the baseline every estimate must beat.

@@ -1,0 +1,26 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/runners/explore_run.hpp"
+
+namespace slamkit::app {
+
+// What `explore` and `features` write of a line-and-corner map.
+
+// lines.csv: one line landmark per row, its world line, covariance and seen extent.
+void WriteLinesCsv(const std::filesystem::path& path, const std::vector<MappedLine>& lines);
+
+// map.png of a run on a log: the mapped lines and corners over the scans' returns as the
+// estimate placed them, with the estimated path and, dimmer, the odometry.
+void WriteFeatureMapFigure(const std::filesystem::path& path, const std::string& title,
+                           const std::vector<MappedLine>& lines,
+                           const std::vector<Eigen::Vector2d>& corners,
+                           const std::vector<Eigen::Vector2d>& points, const Trajectory& estimate,
+                           const Trajectory& odometry);
+
+}  // namespace slamkit::app

@@ -1,0 +1,69 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "slamkit/core/relation.hpp"
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/trajectory_errors.hpp"
+#include "slamkit/io/carmen_reader.hpp"
+
+namespace slamkit::app {
+
+// What the commands that run on a CARMEN log (`grid`, `features`) share: the log's options, its
+// reading, the reference poses and relations it is scored against, and that scoring.
+struct LogInput {
+  std::string log;
+  std::string relations;
+  std::string reference;
+  PairBy pair_by = PairBy::kTime;
+  bool skip_bad_lines = false;
+  bool reference_from_log = false;
+  bool interpolate_odometry = false;
+  int max_scans = 0;         // 0: all
+  double max_range_m = 0.0;  // 0: from the log
+};
+
+// --log, --relations, --reference, --pair-by, --reference-from-log, --skip-bad-lines,
+// --max-scans, --max-range and --interpolate-odometry.
+void AddLogInputOptions(CLI::App* cmd, LogInput& input);
+
+// The log as the options say (its first --max-scans scans), with the reader's notes on stderr.
+CarmenLog ReadInputLog(const LogInput& input);
+
+// The relations (--relations) and the reference poses (--reference, --reference-from-log), read
+// and checked before the long run: InputError naming the file when they cannot pair with `log`.
+std::vector<PoseRelation> ReadInputRelations(const LogInput& input);
+std::optional<Trajectory> LoadReference(const LogInput& input, const CarmenLog& log);
+
+// The evaluations after the run, of the estimate and of the log's raw odometry (the baseline
+// the estimate must beat). A failing one is recorded in `error`, never allowed to lose the run's
+// outputs.
+struct LogEvaluation {
+  std::optional<RelationErrorStats> relations;
+  std::optional<ReferenceComparison> reference;
+  std::optional<RelationErrorStats> odometry_relations;
+  std::optional<ReferenceComparison> odometry_reference;
+  std::string error;
+};
+
+LogEvaluation EvaluateOnLog(const LogInput& input, const Trajectory& estimate,
+                            const Trajectory& odometry, std::vector<PoseRelation> relations,
+                            const std::optional<Trajectory>& reference);
+
+// metrics.json's keys of the input and of the odometry's evaluation: log, reference, pair_by,
+// skipped_lines, no_return_beams, reader_notes, odometry_*, evaluation_error.
+void AddLogInputMetrics(const LogInput& input, const CarmenLog& log, const LogEvaluation& e,
+                        nlohmann::json& metrics);
+
+// The summary's relation rows (and a warning for relations outside the run).
+void PrintRelations(const RelationErrorStats& r);
+
+// The raw odometry at each scan, moved so that the first scan is at the origin, where the
+// filters start.
+Trajectory OdometryFromOrigin(const CarmenLog& log);
+
+}  // namespace slamkit::app
