@@ -180,10 +180,14 @@ std::vector<Piece> MergeCollinear(std::span<const BeamPoint> points, std::vector
   return merged;
 }
 
-LineSegment ToSegment(std::span<const BeamPoint> points, const Piece& piece) {
+LineSegment ToSegment(std::span<const BeamPoint> points, const Piece& piece,
+                      const LineExtractionParams& params) {
   LineSegment s;
   s.line = piece.fit.line;
+  // The wall's own departure from a line, which no beam noise averages away.
   s.covariance = piece.fit.covariance;
+  s.covariance(0, 0) += params.wall_sigma_rho_m * params.wall_sigma_rho_m;
+  s.covariance(1, 1) += params.wall_sigma_alpha_rad * params.wall_sigma_alpha_rad;
   s.residual_rms_m = piece.fit.residual_rms_m;
   s.num_points = piece.range.size();
   s.first_beam = points[piece.range.begin].beam;
@@ -274,7 +278,7 @@ std::vector<LineSegment> ExtractLines(const LaserScan& scan, const LineExtractio
   SettleBoundaries(points, &pieces, params);
   std::vector<LineSegment> segments;
   for (const Piece& piece : pieces) {
-    LineSegment s = ToSegment(points, piece);
+    LineSegment s = ToSegment(points, piece, params);
     if (IsSupported(s, params)) segments.push_back(s);
   }
   return segments;

@@ -59,6 +59,8 @@ std::vector<Field> Fields(FeatureLogParams& p) {
       Number("extraction", "max_residual_rms_m", &e.max_residual_rms_m, Bound::kPositive),
       Number("extraction", "sigma_range_m", &e.sigma_range_m, Bound::kPositive),
       Number("extraction", "sigma_bearing_rad", &e.sigma_bearing_rad, Bound::kPositive),
+      Number("extraction", "wall_sigma_rho_m", &e.wall_sigma_rho_m),
+      Number("extraction", "wall_sigma_alpha_rad", &e.wall_sigma_alpha_rad),
       Number("extraction", "min_corner_angle_rad", &e.min_corner_angle_rad),
       Number("extraction", "max_corner_angle_rad", &e.max_corner_angle_rad),
       Number("extraction", "max_corner_endpoint_distance_m", &e.max_corner_endpoint_distance_m),

@@ -38,6 +38,11 @@ struct LineExtractionParams {
   // Per-beam noise the line covariances are propagated from.
   double sigma_range_m = 0.01;
   double sigma_bearing_rad = 0.001;
+  // Added to each extracted line's covariance (ρ, α): how far a real wall departs from the
+  // straight line the fit assumes (bends, clutter along it, the laser's bias), which the beam
+  // noise, averaged over many returns, does not cover. Zero: the walls are straight.
+  double wall_sigma_rho_m = 0.0;
+  double wall_sigma_alpha_rad = 0.0;
   // Corners: adjacent lines whose interior angle (between the two segments, at their
   // intersection) lies in [min, max], and whose near end points are both within
   // max_corner_endpoint_distance_m of the intersection. That distance must exceed the beam
