@@ -71,7 +71,7 @@ int RunCompareCommand(const ExploreOptions& o) {
   WriteExploreCompareOutputs(output.staging(), result, config, params, command);
   WriteCompareFigures(output.staging(), plan, result, params.seeds.front());
   output.Commit();
-  fmt::print("{}wrote {}\n", ExploreCompareMarkdown(result, command), o.out);
+  fmt::print("{}wrote {}\n", ExploreCompareMarkdown(result, config, command), o.out);
   return 0;
 }
 

@@ -63,6 +63,7 @@ void WriteSeriesFigure(const std::filesystem::path& path, const SeriesFigureData
   gr.SetFontSize(kSeriesFontSize);
   gr.InPlot(kSeriesRegion.x0, kSeriesRegion.x1, kSeriesRegion.y0, kSeriesRegion.y1, false);
   const Box box = SetSeriesRanges(gr, data);
+  gr.SetTuneTicks(0);  // no common "×10³" factor: it falls off the canvas beside the x axis
   const std::string x_label = Escaped(data.x_label);
   const std::string y_label = Escaped(data.y_label);
   DrawFrame(gr, x_label.empty() ? nullptr : x_label.c_str(),

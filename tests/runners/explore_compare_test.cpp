@@ -135,6 +135,23 @@ TEST_F(ExploreCompare, DiagnosticsChangeNeitherPathNorCost) {
   EXPECT_GT(with_ratio, int(on.accuracy.size()) / 2);
 }
 
+// Measured timing runs one at a time: the times are measured, so not zero, and in order.
+TEST_F(ExploreCompare, WallTimingMeasuresEachRun) {
+  ExplorationConfig config = ShortConfig(5.0);
+  config.run.timing = SlamTiming::kWallClock;
+  ExploreCompareParams params;
+  params.policies = {SelectionKind::kCovariance};
+  params.seeds = {7, 8};
+  std::vector<int> done;
+  const ExploreCompareResult r = RunExploreCompare(PlanOf(config), config, params,
+                                                   [&done](int d, int) { done.push_back(d); });
+  EXPECT_EQ(done, (std::vector<int>{1, 2}));
+  ASSERT_EQ(r.runs.size(), 2u);
+  EXPECT_EQ(r.runs[1].seed, 8u);
+  EXPECT_GT(r.policies[0].slam_time_total_s.min, 0.0);
+  EXPECT_TRUE(r.savings.empty());  // nothing to save against
+}
+
 TEST_F(ExploreCompare, NoPolicyOrNoSeedIsRejected) {
   const ExplorationConfig config = ShortConfig(5.0);
   ExploreCompareParams params;

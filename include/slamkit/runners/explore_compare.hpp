@@ -108,6 +108,7 @@ void WriteExploreCompareOutputs(const std::filesystem::path& dir,
                                 const ExploreCompareResult& result,
                                 const ExplorationConfig& config,
                                 const ExploreCompareParams& params, const std::string& command);
-std::string ExploreCompareMarkdown(const ExploreCompareResult& result, const std::string& command);
+std::string ExploreCompareMarkdown(const ExploreCompareResult& result,
+                                   const ExplorationConfig& config, const std::string& command);
 
 }  // namespace slamkit
