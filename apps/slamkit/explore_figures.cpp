@@ -1,8 +1,8 @@
 #include "explore_figures.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 namespace slamkit::app {
 namespace {
@@ -11,8 +11,8 @@ namespace {
 void AddBand(const ChiSquareBand& band, double last_step, int runs, SeriesFigureData* figure) {
   const std::string label = fmt::format("95% band, {} runs", runs);
   for (const double level : {band.lo, band.hi}) {
-    figure->series.push_back({level == band.lo ? label : "", {1.0, last_step}, {level, level},
-                              5, true});
+    figure->series.push_back(
+        {level == band.lo ? label : "", {1.0, last_step}, {level, level}, 5, true});
   }
 }
 

@@ -1,6 +1,9 @@
 // SPEC S1's experiment: the three correction stages on the same exploration, over many seeds.
 #include "slamkit/runners/explore_compare.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -8,9 +11,6 @@
 #include <mutex>
 #include <numeric>
 #include <stdexcept>
-
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 namespace slamkit {
 namespace {
@@ -189,10 +189,10 @@ ExploreCompareResult RunExploreCompare(const FloorPlan& plan, const ExplorationC
   } else {
     for (int i = 0; i < total; ++i) run(i);
   }
-  for (const SelectionKind p : params.policies) out.policies.push_back(SummarisePolicy(p, out.runs));
+  for (const SelectionKind p : params.policies)
+    out.policies.push_back(SummarisePolicy(p, out.runs));
   out.savings = CovarianceSavingsOf(out.runs, params.policies);
-  out.wall_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

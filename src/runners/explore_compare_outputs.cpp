@@ -1,9 +1,9 @@
 // The comparison's files: compare.md (the table), compare.csv (the runs), metrics.json.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/writers.hpp"
@@ -92,16 +92,15 @@ void WriteCompareCsv(const std::filesystem::path& path, const std::vector<Compar
           "odometry_final_error_m,lines,corners,final_mode,wall_time_s\n";
     for (const CompareRun& r : runs) {
       const double accuracy = RunAccuracy(r);
-      os << fmt::format("{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},"
-                        "{:.17g},{:.17g},{},{},{},{:.6f}\n",
-                        SelectionKindName(r.policy), r.seed, r.Get("steps"), r.Get("elapsed_s"),
-                        r.Get("slam_time_total_s"), r.Get("slam_time_max_s"),
-                        r.Get("open_loop_time_s"),
-                        std::isnan(accuracy) ? std::string() : fmt::format("{:.17g}", accuracy),
-                        r.Get("mean_nees"), r.Get("mean_error_m"), r.Get("final_error_m"),
-                        r.Get("odometry_mean_error_m"), r.Get("odometry_final_error_m"),
-                        r.Get("lines"), r.Get("corners"),
-                        r.metrics.at("final_mode").get<std::string>(), r.Get("wall_time_s"));
+      os << fmt::format(
+          "{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},"
+          "{:.17g},{:.17g},{},{},{},{:.6f}\n",
+          SelectionKindName(r.policy), r.seed, r.Get("steps"), r.Get("elapsed_s"),
+          r.Get("slam_time_total_s"), r.Get("slam_time_max_s"), r.Get("open_loop_time_s"),
+          std::isnan(accuracy) ? std::string() : fmt::format("{:.17g}", accuracy),
+          r.Get("mean_nees"), r.Get("mean_error_m"), r.Get("final_error_m"),
+          r.Get("odometry_mean_error_m"), r.Get("odometry_final_error_m"), r.Get("lines"),
+          r.Get("corners"), r.metrics.at("final_mode").get<std::string>(), r.Get("wall_time_s"));
     }
   });
 }
@@ -116,8 +115,8 @@ std::string TableRow(const ComparePolicySummary& s) {
       1e3 * s.slam_time_max_s, s.open_loop_time_s.mean, s.open_loop_time_s.sd,
       Fixed(s.accuracy_step_mean, 3), Fixed(s.accuracy_run_mean, 3), s.anees_mean,
       100.0 * s.anees_in_band, s.mean_error_m.mean, s.final_error_m.mean,
-      s.odometry_mean_error_m.mean, s.odometry_final_error_m.mean, s.lines.mean,
-      s.corners.mean, s.steps.mean, s.elapsed_s.mean, s.wall_time_s.mean);
+      s.odometry_mean_error_m.mean, s.odometry_final_error_m.mean, s.lines.mean, s.corners.mean,
+      s.steps.mean, s.elapsed_s.mean, s.wall_time_s.mean);
 }
 
 }  // namespace
@@ -157,8 +156,7 @@ std::string ExploreCompareMarkdown(const ExploreCompareResult& result,
 }
 
 void WriteExploreCompareOutputs(const std::filesystem::path& dir,
-                                const ExploreCompareResult& result,
-                                const ExplorationConfig& config,
+                                const ExploreCompareResult& result, const ExplorationConfig& config,
                                 const ExploreCompareParams& params, const std::string& command) {
   WriteFileAtomically(dir / "compare.md", ExploreCompareMarkdown(result, config, command));
   WriteCompareCsv(dir / "compare.csv", result.runs);

@@ -45,7 +45,8 @@ class RecordingSlam final : public ExplorationSlam {
       if (!scan.IsReturn(i)) continue;
       const double r = scan.ranges_m[i];
       const double a = scan.BeamAngle(i);
-      scan_points_.push_back(laser.TransformFrom(Eigen::Vector2d(r * std::cos(a), r * std::sin(a))));
+      scan_points_.push_back(
+          laser.TransformFrom(Eigen::Vector2d(r * std::cos(a), r * std::sin(a))));
     }
   }
 };

@@ -67,9 +67,9 @@ TEST_F(LineMapFigure, WritesAPngOfItsSizeWithLinesCornersAndPaths) {
   const RgbaImage image = ReadRgbaPng(dir_ / "map.png");
   ASSERT_EQ(image.width, 800);
   ASSERT_EQ(image.height, 600);
-  EXPECT_GT(CountPixels(image, IsRed), 1000);   // four bold mapped lines around the room
-  EXPECT_GT(CountPixels(image, IsBlue), 300);   // the estimated loop
-  EXPECT_GT(CountPixels(image, IsGreen), 10);   // the corner markers
+  EXPECT_GT(CountPixels(image, IsRed), 1000);  // four bold mapped lines around the room
+  EXPECT_GT(CountPixels(image, IsBlue), 300);  // the estimated loop
+  EXPECT_GT(CountPixels(image, IsGreen), 10);  // the corner markers
   // Without lines, corners and estimate, none of their colours.
   LineMapFigureData bare = SampleRoom(2000);
   bare.lines.clear();
@@ -98,8 +98,7 @@ TEST_F(LineMapFigure, SvgEmptyDataAndBadExtension) {
   WriteLineMapFigure(dir_ / "empty.PNG", LineMapFigureData{});
   EXPECT_EQ(ReadRgbaPng(dir_ / "empty.PNG").height, 1000);
   EXPECT_THROW(WriteLineMapFigure(dir_ / "map.pdf", SampleRoom(10)), std::invalid_argument);
-  EXPECT_THROW(WriteLineMapFigure(dir_ / "no_dir" / "map.png", SampleRoom(10)),
-               std::runtime_error);
+  EXPECT_THROW(WriteLineMapFigure(dir_ / "no_dir" / "map.png", SampleRoom(10)), std::runtime_error);
   EXPECT_FALSE(fs::exists(dir_ / "map.pdf"));
 }
 

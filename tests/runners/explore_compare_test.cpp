@@ -78,8 +78,8 @@ TEST_F(ExploreCompare, TheSummaryIsTheRunsAggregated) {
     ASSERT_GT(accuracy_steps, 0);
     EXPECT_NEAR(*s.accuracy_step_mean, accuracy / accuracy_steps, 1e-12);
     ASSERT_FALSE(s.anees.empty());
-    const double first = (r.runs[3 * p].nees[0] + r.runs[3 * p + 1].nees[0] +
-                          r.runs[3 * p + 2].nees[0]) / 3.0;
+    const double first =
+        (r.runs[3 * p].nees[0] + r.runs[3 * p + 1].nees[0] + r.runs[3 * p + 2].nees[0]) / 3.0;
     EXPECT_NEAR(s.anees[0], first, 1e-12);
     // The kept first-seed run is the run the summary counted.
     EXPECT_EQ(r.first_seed[p].run.slam_time_s.size(), r.runs[3 * p].Get("steps"));
@@ -88,10 +88,10 @@ TEST_F(ExploreCompare, TheSummaryIsTheRunsAggregated) {
   EXPECT_NEAR(*r.policies[0].accuracy_step_mean, 1.0, 1e-9);
   EXPECT_LT(*r.policies[1].accuracy_step_mean, 1.0);
   ASSERT_EQ(r.savings.size(), 1u);
-  EXPECT_NEAR(r.savings[0].of_means_pct,
-              100.0 * (1.0 - r.policies[1].slam_time_total_s.mean /
-                                 r.policies[0].slam_time_total_s.mean),
-              1e-9);
+  EXPECT_NEAR(
+      r.savings[0].of_means_pct,
+      100.0 * (1.0 - r.policies[1].slam_time_total_s.mean / r.policies[0].slam_time_total_s.mean),
+      1e-9);
   EXPECT_LE(r.savings[0].min_pct, r.savings[0].max_pct);
 }
 
@@ -101,8 +101,7 @@ TEST_F(ExploreCompare, ParallelAndOneThreadWriteTheSameOutput) {
   for (const int threads : {1, 3}) {
     const fs::path dir = dir_ / std::to_string(threads);
     fs::create_directories(dir);
-    WriteExploreCompareOutputs(dir,
-                               RunExploreCompare(plan, config, TwoPoliciesThreeSeeds(threads)),
+    WriteExploreCompareOutputs(dir, RunExploreCompare(plan, config, TwoPoliciesThreeSeeds(threads)),
                                config, TwoPoliciesThreeSeeds(threads), "cmd");
   }
   nlohmann::json one = ReadJson(dir_ / "1" / "metrics.json");
@@ -143,8 +142,8 @@ TEST_F(ExploreCompare, WallTimingMeasuresEachRun) {
   params.policies = {SelectionKind::kCovariance};
   params.seeds = {7, 8};
   std::vector<int> done;
-  const ExploreCompareResult r = RunExploreCompare(PlanOf(config), config, params,
-                                                   [&done](int d, int) { done.push_back(d); });
+  const ExploreCompareResult r =
+      RunExploreCompare(PlanOf(config), config, params, [&done](int d, int) { done.push_back(d); });
   EXPECT_EQ(done, (std::vector<int>{1, 2}));
   ASSERT_EQ(r.runs.size(), 2u);
   EXPECT_EQ(r.runs[1].seed, 8u);
