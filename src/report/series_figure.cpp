@@ -53,6 +53,8 @@ void WriteSeriesFigure(const std::filesystem::path& path, const SeriesFigureData
   gr.InPlot(kSeriesRegion.x0, kSeriesRegion.x1, kSeriesRegion.y0, kSeriesRegion.y1, false);
   const internal::Box box = SetSeriesRanges(gr, data);
   gr.SetTuneTicks(0);  // no common "×10³" factor: it falls off the canvas beside the x axis
+  gr.SetTickTempl('x', "%g");  // 1000, not 1e3
+  gr.SetTickTempl('y', "%g");
   const std::string x_label = internal::Escaped(data.x_label);
   const std::string y_label = internal::Escaped(data.y_label);
   internal::DrawFrame(gr, x_label.empty() ? nullptr : x_label.c_str(),
