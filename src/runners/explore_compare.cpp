@@ -59,13 +59,14 @@ void Accuracy(const std::vector<const CompareRun*>& runs, ComparePolicySummary* 
   if (!per_run.empty()) s->accuracy_run_mean = SpreadOf(per_run).mean;
 }
 
-// One run: its policy and seed in `config`, selection diagnostics on for the accuracy ratio
-// (they work on a copy of the filter, so the path and the modelled cost stay those without).
+// One run: its policy and seed in `config`. Selection diagnostics on for the accuracy ratio in
+// modelled timing (they work on a copy of the filter, so the path and the modelled cost stay
+// those without); off in wall timing, where their extra full update would be measured too.
 CompareRun RunOne(const FloorPlan& plan, ExplorationConfig config, SelectionKind policy,
                   std::uint64_t seed, ExploreResult* keep) {
   config.slam.selection = policy;
   config.seed = seed;
-  config.slam.ekf.selection_diagnostics = true;
+  config.slam.ekf.selection_diagnostics = config.run.timing == SlamTiming::kModelledCost;
   ExploreResult result = RunFeatureExploration(plan, config);
   CompareRun run = SummariseCompareRun(result, config);
   if (keep != nullptr) *keep = std::move(result);

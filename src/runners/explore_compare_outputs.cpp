@@ -143,7 +143,9 @@ std::string ExploreCompareMarkdown(const ExploreCompareResult& result,
   md << (config.run.timing == SlamTiming::kModelledCost
              ? fmt::format("SLAM time modelled: each step's counted work at {:.3g} flop/s.\n\n",
                            config.slam.flops_per_second)
-             : std::string("SLAM time measured (wall clock), runs one at a time.\n\n"));
+             : std::string("SLAM time measured (wall clock), runs one at a time, without the "
+                           "accuracy diagnostics (their full update on a copy would be timed "
+                           "too).\n\n"));
   for (const CovarianceSavings& s : result.savings) {
     md << fmt::format(
         "- covariance vs {}: {:.1f} % less accumulated SLAM time (of the means; seed by seed "

@@ -134,7 +134,8 @@ TEST_F(ExploreCompare, DiagnosticsChangeNeitherPathNorCost) {
   EXPECT_GT(with_ratio, int(on.accuracy.size()) / 2);
 }
 
-// Measured timing runs one at a time: the times are measured, so not zero, and in order.
+// Measured timing runs one at a time (in order), measures (not zero) and leaves the diagnostics
+// off.
 TEST_F(ExploreCompare, WallTimingMeasuresEachRun) {
   ExplorationConfig config = ShortConfig(5.0);
   config.run.timing = SlamTiming::kWallClock;
@@ -149,6 +150,9 @@ TEST_F(ExploreCompare, WallTimingMeasuresEachRun) {
   EXPECT_EQ(r.runs[1].seed, 8u);
   EXPECT_GT(r.policies[0].slam_time_total_s.min, 0.0);
   EXPECT_TRUE(r.savings.empty());  // nothing to save against
+  // The diagnostics' full update would be timed with the step: off.
+  EXPECT_EQ(r.runs[0].accuracy_steps, 0);
+  EXPECT_FALSE(r.policies[0].accuracy_step_mean.has_value());
 }
 
 TEST_F(ExploreCompare, NoPolicyOrNoSeedIsRejected) {

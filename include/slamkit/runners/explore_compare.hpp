@@ -88,8 +88,9 @@ struct ExploreCompareResult {
 // Called after each run with the number done and the total; from one thread at a time.
 using CompareProgress = std::function<void(int done, int total)>;
 
-// Runs every policy × seed of `config` (its policy and seed replaced, selection diagnostics on
-// for the accuracy ratio) and summarises them. The result is the same whatever `threads`, except
+// Runs every policy × seed of `config` (its policy and seed replaced; selection diagnostics on
+// for the accuracy ratio in modelled timing, off in wall timing, where they would be measured
+// as part of the step) and summarises them. The result is the same whatever `threads`, except
 // wall times. Throws std::invalid_argument for no policy or no seed.
 ExploreCompareResult RunExploreCompare(const FloorPlan& plan, const ExplorationConfig& config,
                                        const ExploreCompareParams& params,
