@@ -1,5 +1,6 @@
 // `slamkit explore`: the active loop of SPEC S1 (frontier exploration driven by the
 // line-and-corner EKF-SLAM) on a simulated robot in a floor plan, compared with the truth.
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "feature_outputs.hpp"
 #include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/io/atomic_file.hpp"
@@ -15,6 +17,8 @@
 #include "slamkit/io/floor_plan_reader.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/report/figures.hpp"
+#include "explore_figures.hpp"
+#include "slamkit/runners/explore_compare.hpp"
 #include "slamkit/runners/explore_run.hpp"
 
 namespace slamkit::app {
@@ -25,35 +29,55 @@ struct ExploreOptions {
   std::string out;
   std::string policy;  // overrides the config's selection.policy
   std::optional<std::uint64_t> seed;
+  bool compare = false;  // every policy of `policies` on every seed of `seeds`
+  std::string policies = "all,entropy,covariance";
+  std::string seeds = "1-20";
 };
 
-// DIR/lines.csv: one line landmark per row, its world line, covariance and seen extent.
-void WriteLinesCsv(const std::filesystem::path& path, const std::vector<MappedLine>& lines) {
-  WriteFileAtomically(path, [&lines](std::ostream& os) {
-    os << "rho_m,alpha_rad,cov_rho_rho,cov_rho_alpha,cov_alpha_alpha,x1_m,y1_m,x2_m,y2_m\n";
-    for (const MappedLine& l : lines) {
-      os << fmt::format("{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
-                        l.line.rho_m, l.line.alpha_rad, l.covariance(0, 0), l.covariance(0, 1),
-                        l.covariance(1, 1), l.start_m.x(), l.start_m.y(), l.end_m.x(),
-                        l.end_m.y());
+// "all,entropy" as the list of policies; InputError naming --policies for an unknown or
+// repeated one.
+std::vector<SelectionKind> ParsePolicies(const std::string& text) {
+  std::vector<SelectionKind> policies;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, comma - start);
+    try {
+      policies.push_back(SelectionKindOf(name));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(fmt::format("--policies '{}': {}", text, e.what()));
     }
-  });
+    if (std::count(policies.begin(), policies.end(), policies.back()) > 1) {
+      throw InputError(fmt::format("--policies '{}': '{}' is given twice", text, name));
+    }
+    start = comma + 1;
+  }
+  return policies;
 }
 
-void WriteFigure(const std::filesystem::path& path, const ExploreResult& r,
-                 const std::string& title) {
-  PathFigureData figure;
-  figure.title = title;
-  figure.truth = r.run.truth;
-  figure.estimate = r.run.estimate;
-  for (const Eigen::Vector2d& c : r.corners) {
-    figure.map.landmarks.push_back({.source_id = kNoLandmark, .position_m = c,
-                                    .covariance = Eigen::Matrix2d::Zero()});
-  }
-  WritePathFigure(path, figure);
+// `explore --compare`: the runs, then the table, the runs' rows, metrics.json and the figures.
+int RunCompareCommand(const ExploreOptions& o) {
+  ExploreCompareParams params;
+  params.policies = ParsePolicies(o.policies);
+  params.seeds = ParseSeeds(o.seeds);
+  const ExplorationConfig config = LoadExplorationConfig(o.config);
+  const FloorPlan plan{ReadFloorPlanFile(config.world)};
+  OutputDir output(o.out);
+  const std::string command =
+      fmt::format("slamkit explore --compare --config {} --policies {} --seeds {} --out {}",
+                  o.config, o.policies, o.seeds, o.out);
+  Progress progress("runs", static_cast<int>(params.policies.size() * params.seeds.size()));
+  const ExploreCompareResult result = RunExploreCompare(
+      plan, config, params, [&progress](int done, int /*total*/) { progress.Update(done); });
+  WriteExploreCompareOutputs(output.staging(), result, config, params, command);
+  WriteCompareFigures(output.staging(), plan, result, params.seeds.front());
+  output.Commit();
+  fmt::print("{}wrote {}\n", ExploreCompareMarkdown(result, config, command), o.out);
+  return 0;
 }
 
 int RunExploreCommand(const ExploreOptions& o) {
+  if (o.compare) return RunCompareCommand(o);
   ExplorationConfig config = LoadExplorationConfig(o.config);
   if (!o.policy.empty()) config.slam.selection = SelectionKindOf(o.policy);
   if (o.seed) config.seed = *o.seed;
@@ -67,9 +91,10 @@ int RunExploreCommand(const ExploreOptions& o) {
   WriteLinesCsv(dir / "lines.csv", result.lines);
   const nlohmann::json metrics = ExploreMetrics(result, config);
   WriteJson(dir / "metrics.json", metrics);
-  WriteFigure(dir / "map.png", result,
-              fmt::format("explore: {} policy, seed {}", SelectionKindName(config.slam.selection),
-                          config.seed));
+  WriteLineMapFigure(dir / "map.png",
+                     LineMapOf(plan, result,
+                               fmt::format("explore: {} policy, seed {}",
+                                           SelectionKindName(config.slam.selection), config.seed)));
   output.Commit();
   fmt::print("{} steps, {:.1f} s simulated ({}): SLAM time {:.4f} s (max {:.6f}), open-loop {:.1f} s\n",
              metrics["steps"].get<std::size_t>(), result.run.elapsed_s,
@@ -92,10 +117,20 @@ void RegisterExplore(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
-  cmd->add_option("--policy", o->policy, "all | entropy | entropy-fast | covariance (default: the config's)")
+  CLI::Option* compare = cmd->add_flag(
+      "--compare", o->compare, "compare the policies of --policies over the seeds of --seeds");
+  cmd->add_option("--policies", o->policies, "with --compare: all,entropy,entropy-fast,covariance")
+      ->capture_default_str()
+      ->needs(compare);
+  cmd->add_option("--seeds", o->seeds, "with --compare: seeds, 1-20, 1,3,7 or 2")
+      ->capture_default_str()
+      ->needs(compare);
+  CLI::Option* policy = cmd->add_option("--policy", o->policy, "all | entropy | entropy-fast | covariance (default: the config's)")
       ->check(CLI::IsMember({"all", "entropy", "entropy-fast", "covariance"}));
   cmd->add_option("--seed", o->seed, "the run's random seed (default: the config's)")
-      ->check(SeedNumber());
+      ->check(SeedNumber())
+      ->excludes(compare);
+  policy->excludes(compare);
   cmd->callback([o, &exit_code] { exit_code = RunExploreCommand(*o); });
 }
 

@@ -22,19 +22,18 @@ void WriteLinesCsv(const std::filesystem::path& path, const std::vector<MappedLi
 }
 
 void WriteFeatureMapFigure(const std::filesystem::path& path, const std::string& title,
-                           const std::vector<MappedLine>& /*lines*/,
+                           const std::vector<MappedLine>& lines,
                            const std::vector<Eigen::Vector2d>& corners,
-                           const std::vector<Eigen::Vector2d>& /*points*/,
-                           const Trajectory& estimate, const Trajectory& odometry) {
-  PathFigureData figure;
+                           const std::vector<Eigen::Vector2d>& points, const Trajectory& estimate,
+                           const Trajectory& odometry) {
+  LineMapFigureData figure;
   figure.title = title;
-  figure.truth = odometry;
+  for (const MappedLine& l : lines) figure.lines.push_back({l.start_m, l.end_m});
+  figure.corners = corners;
+  figure.points = points;
   figure.estimate = estimate;
-  for (const Eigen::Vector2d& c : corners) {
-    figure.map.landmarks.push_back(
-        {.source_id = kNoLandmark, .position_m = c, .covariance = Eigen::Matrix2d::Zero()});
-  }
-  WritePathFigure(path, figure);
+  figure.odometry = odometry;
+  WriteLineMapFigure(path, figure);
 }
 
 }  // namespace slamkit::app

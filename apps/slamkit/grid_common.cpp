@@ -45,6 +45,36 @@ CLI::Validator NumberCheck(const std::string& description, bool (*ok)(double)) {
 
 }  // namespace
 
+// "1-5", "1,3,7" or "2" as the list of seeds.
+std::vector<std::uint64_t> ParseSeeds(const std::string& text) {
+  std::vector<std::uint64_t> seeds;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string part = text.substr(start, comma - start);
+    const std::size_t dash = part.find('-');
+    try {
+      std::size_t used = 0;
+      const std::uint64_t lo = std::stoull(part.substr(0, dash), &used);
+      if (used != part.substr(0, dash).size() || part[0] == '-') throw std::invalid_argument("");
+      std::uint64_t hi = lo;
+      if (dash != std::string::npos) {
+        const std::string rest = part.substr(dash + 1);
+        hi = std::stoull(rest, &used);
+        if (used != rest.size() || rest.empty() || rest[0] == '-') throw std::invalid_argument("");
+      }
+      if (hi < lo || hi - lo >= 1000) throw std::invalid_argument("");
+      for (std::uint64_t s = lo; s <= hi; ++s) seeds.push_back(s);
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("--seeds '{}': expected seeds such as 1-5 or 1,3,7 (a range "
+                                   "of at most 1000)",
+                                   text));
+    }
+    start = comma + 1;
+  }
+  return seeds;
+}
+
 CLI::Validator PositiveNumber() {
   return NumberCheck("> 0", [](double v) { return v > 0.0; });
 }

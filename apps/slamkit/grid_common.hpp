@@ -21,6 +21,9 @@ CLI::Validator NonNegativeNumber();
 // A seed: digits only, 0 to 2^64 - 1 (CLI11 would read "-1" as 2^64 - 1).
 CLI::Validator SeedNumber();
 
+// "1-5", "1,3,7" or "2" as the list of seeds (`--seeds`); InputError naming --seeds otherwise.
+std::vector<std::uint64_t> ParseSeeds(const std::string& text);
+
 // A run's output directory (--out), made before the run and put in place after it: the run
 // writes into a fresh hidden folder beside it (`.NAME.partial-XXXXXX`), which Commit() renames
 // onto `out` in one step (an existing `out` is swapped with it, then removed). So `out` holds

@@ -1,6 +1,7 @@
 #include "mgl_canvas.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -94,6 +95,38 @@ void DrawFrame(mglGraph& gr, const char* x_label, const char* y_label) {
   gr.Axis("xy");
   if (x_label != nullptr) gr.Label('x', x_label, 0);
   if (y_label != nullptr) gr.Label('y', y_label, 0, "value 0.3");  // clear of wide ticks
+}
+
+Box SetEqualScaleRanges(mglGraph& gr, const Range& rx, const Range& ry) {
+  gr.SetRanges(0.0, 1.0, 0.0, 1.0);
+  const mglPoint corner0 = gr.CalcScr(mglPoint(0.0, 0.0));
+  const mglPoint corner1 = gr.CalcScr(mglPoint(1.0, 1.0));
+  const double box_aspect = (corner1.x - corner0.x) / (corner1.y - corner0.y);
+  const auto [x0, x1] = rx.Padded(0.04, 1.0);
+  const auto [y0, y1] = ry.Padded(0.04, 1.0);
+  const double half_x = 0.5 * std::max(x1 - x0, (y1 - y0) * box_aspect);
+  const double half_y = half_x / box_aspect;
+  const mglPoint center(0.5 * (x0 + x1), 0.5 * (y0 + y1));
+  const Box box{mglPoint(center.x - half_x, center.y - half_y),
+                mglPoint(center.x + half_x, center.y + half_y)};
+  gr.SetRanges(box.lo, box.hi);
+  return box;
+}
+
+int EmptiestCorner(std::span<const XyData* const> layers, const Box& box) {
+  std::array<int, 4> count{};
+  for (const XyData* xy : layers) {
+    for (std::size_t i = 0; i < xy->x.size(); ++i) {
+      const double u = (xy->x[i] - box.lo.x) / (box.hi.x - box.lo.x);
+      const double v = (xy->y[i] - box.lo.y) / (box.hi.y - box.lo.y);
+      if (u > 0.35 && u < 0.65) continue;
+      if (v > 0.3 && v < 0.7) continue;
+      ++count[(u >= 0.5 ? 1 : 0) + (v >= 0.5 ? 2 : 0)];
+    }
+  }
+  const int corners[] = {3, 2, 1, 0};  // preference on ties: top right first
+  return *std::min_element(std::begin(corners), std::end(corners),
+                           [&](int a, int b) { return count[a] < count[b]; });
 }
 
 void PutsAboveBox(mglGraph& gr, const Box& box, const std::string& text, double lift,

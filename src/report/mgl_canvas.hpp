@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <span>
+
 #include <mgl2/mgl.h>
 
 namespace slamkit::internal {
@@ -56,6 +58,25 @@ struct Box {
 
 // Frame, grid, tick labels and axis labels for the current ranges; a null label is left out.
 void DrawFrame(mglGraph& gr, const char* x_label, const char* y_label);
+
+// Paired coordinates for one MathGL polyline or marker set (NaN breaks a polyline).
+struct XyData {
+  std::vector<double> x;
+  std::vector<double> y;
+  void Add(double px, double py) {
+    x.push_back(px);
+    y.push_back(py);
+  }
+  bool Empty() const { return x.empty(); }
+};
+
+// Sets the data limits of the current region to cover `rx` × `ry` (each padded by 4 %, at least
+// 1 m) at equal scale on both axes, widening the span so that the box is filled; returns them.
+Box SetEqualScaleRanges(mglGraph& gr, const Range& rx, const Range& ry);
+
+// The legend corner (MathGL's 0 bottom-left … 3 top-right) covering the fewest points of
+// `layers` inside `box`; top right on ties.
+int EmptiestCorner(std::span<const XyData* const> layers, const Box& box);
 
 // `text` centred above the box spanning [lo, hi], `lift` box heights over its top edge (text is
 // never clipped by the box, unlike lines).

@@ -22,13 +22,16 @@ namespace {
 using internal::Box;
 using internal::CheckedFormat;
 using internal::DrawFrame;
+using internal::EmptiestCorner;
 using internal::Escaped;
 using internal::ImageFormat;
 using internal::PutsAboveBox;
 using internal::Range;
 using internal::Region;
+using internal::SetEqualScaleRanges;
 using internal::SuppressMglWarnings;
 using internal::WriteAtomically;
+using internal::XyData;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kEllipsePoints = 36;
@@ -36,17 +39,6 @@ constexpr int kEllipsePoints = 36;
 // Layout, tuned by eye on 1200×1000 images: MathGL scales fonts with the region's size.
 constexpr Region kPathRegion{-0.07, 1.1, -0.05, 1.06};
 constexpr double kPathFontSize = 3.0;
-
-// Paired coordinates for one MathGL polyline or marker set.
-struct XyData {
-  std::vector<double> x;
-  std::vector<double> y;
-  void Add(double px, double py) {
-    x.push_back(px);
-    y.push_back(py);
-  }
-  bool Empty() const { return x.empty(); }
-};
 
 XyData PathPoints(const Trajectory& trajectory) {
   XyData xy;
@@ -77,6 +69,11 @@ struct MapLayers {
   XyData ellipses;
 };
 
+// The layers that place the view and the legend: all but the ellipses.
+std::array<const XyData*, 4> MarkedLayers(const MapLayers& layers) {
+  return {&layers.truth, &layers.estimate, &layers.true_landmarks, &layers.landmarks};
+}
+
 MapLayers BuildLayers(const PathFigureData& data) {
   MapLayers layers{PathPoints(data.truth), PathPoints(data.estimate), {}, {}, {}};
   for (const Landmark& l : data.true_landmarks.landmarks) {
@@ -89,48 +86,16 @@ MapLayers BuildLayers(const PathFigureData& data) {
   return layers;
 }
 
-// Sets the data limits of the current region: `x` and `y` with equal scale on both axes, the
-// span widened so the box is filled. Ellipses do not count: one huge fresh landmark would
-// otherwise shrink the whole map.
-Box SetEqualScaleRanges(mglGraph& gr, const MapLayers& layers) {
+// Equal scale on both axes over paths and landmarks. Ellipses do not count: one huge fresh
+// landmark would otherwise shrink the whole map.
+Box SetMapRanges(mglGraph& gr, const MapLayers& layers) {
   Range rx;
   Range ry;
-  for (const XyData* xy : {&layers.truth, &layers.estimate, &layers.true_landmarks,
-                           &layers.landmarks}) {
+  for (const XyData* xy : MarkedLayers(layers)) {
     rx.Add(xy->x);
     ry.Add(xy->y);
   }
-  gr.SetRanges(0.0, 1.0, 0.0, 1.0);
-  const mglPoint corner0 = gr.CalcScr(mglPoint(0.0, 0.0));
-  const mglPoint corner1 = gr.CalcScr(mglPoint(1.0, 1.0));
-  const double box_aspect = (corner1.x - corner0.x) / (corner1.y - corner0.y);
-  const auto [x0, x1] = rx.Padded(0.04, 1.0);
-  const auto [y0, y1] = ry.Padded(0.04, 1.0);
-  const double half_x = 0.5 * std::max(x1 - x0, (y1 - y0) * box_aspect);
-  const double half_y = half_x / box_aspect;
-  const mglPoint center(0.5 * (x0 + x1), 0.5 * (y0 + y1));
-  const Box box{mglPoint(center.x - half_x, center.y - half_y),
-                mglPoint(center.x + half_x, center.y + half_y)};
-  gr.SetRanges(box.lo, box.hi);
-  return box;
-}
-
-// The legend corner (MathGL's 0 bottom-left … 3 top-right) covering the fewest drawn points.
-int EmptiestCorner(const MapLayers& layers, const Box& box) {
-  std::array<int, 4> count{};
-  for (const XyData* xy : {&layers.truth, &layers.estimate, &layers.true_landmarks,
-                           &layers.landmarks}) {
-    for (std::size_t i = 0; i < xy->x.size(); ++i) {
-      const double u = (xy->x[i] - box.lo.x) / (box.hi.x - box.lo.x);
-      const double v = (xy->y[i] - box.lo.y) / (box.hi.y - box.lo.y);
-      if (u > 0.35 && u < 0.65) continue;
-      if (v > 0.3 && v < 0.7) continue;
-      ++count[(u >= 0.5 ? 1 : 0) + (v >= 0.5 ? 2 : 0)];
-    }
-  }
-  const int corners[] = {3, 2, 1, 0};  // preference on ties: top right first
-  return *std::min_element(std::begin(corners), std::end(corners),
-                           [&](int a, int b) { return count[a] < count[b]; });
+  return SetEqualScaleRanges(gr, rx, ry);
 }
 
 struct Layer {
@@ -189,11 +154,11 @@ void WritePathFigure(const std::filesystem::path& path, const PathFigureData& da
   mglGraph gr(0, data.width_px, data.height_px);
   gr.SetFontSize(kPathFontSize);
   gr.InPlot(kPathRegion.x0, kPathRegion.x1, kPathRegion.y0, kPathRegion.y1, false);
-  const Box box = SetEqualScaleRanges(gr, layers);
+  const Box box = SetMapRanges(gr, layers);
   DrawFrame(gr, "x [m]", "y [m]");
   if (!data.title.empty()) PutsAboveBox(gr, box, Escaped(data.title), 0.03, -1.4);
   if (DrawMapLayers(gr, layers, data.ellipse_sigma)) {
-    gr.Legend(EmptiestCorner(layers, box), "#", "size 2.5");
+    gr.Legend(EmptiestCorner(MarkedLayers(layers), box), "#", "size 2.5");
   }
   WriteAtomically(gr, path, format);
 }

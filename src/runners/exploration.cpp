@@ -65,6 +65,8 @@ ExplorationRun RunExploration(const FloorPlan& plan, const Pose2& start, Explora
     // The estimate at the scan, carried to now by the odometry of the hold.
     const Pose2 now = slam.Estimate().Compose(odometry_at_last_step.Between(robot.odometry));
     u = explorer.Step(now, scan, t);
+    run.planner_pose.push_back({t, now});
+    run.commands.push_back(u);
     robot.Drive(u, params, rng);
     t += period;
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numeric>
 
 #include "slamkit/core/angle.hpp"
@@ -14,19 +15,40 @@ namespace {
 // The feature EKF with its pose covariance kept at every step, for the NEES.
 class RecordingSlam final : public ExplorationSlam {
  public:
-  RecordingSlam(const FeatureSlamParams& params, const Pose2& start) : slam_(params, start) {}
+  RecordingSlam(const FeatureSlamParams& params, const Pose2& start)
+      : slam_(params, start), diagnostics_(params.ekf.selection_diagnostics) {}
   void Step(const Pose2& delta, const LaserScan& scan) override {
     slam_.Step(delta, scan);
     covariances_.push_back(slam_.PoseCovariance());
+    if (diagnostics_) accuracy_.push_back(slam_.slam().LastSelectionStats().accuracy());
+    AddScanPoints(scan);
   }
   Pose2 Estimate() const override { return slam_.Estimate(); }
   double ModelledCostS() const override { return slam_.ModelledCostS(); }
   const FeatureEkfSlam& slam() const { return slam_.slam(); }
   const std::vector<Eigen::Matrix3d>& covariances() const { return covariances_; }
+  const std::vector<std::optional<double>>& accuracy() const { return accuracy_; }
+  std::vector<Eigen::Vector2d> TakeScanPoints() { return std::move(scan_points_); }
 
  private:
   FeatureExplorationSlam slam_;
+  bool diagnostics_;
   std::vector<Eigen::Matrix3d> covariances_;
+  std::vector<std::optional<double>> accuracy_;
+  std::vector<Eigen::Vector2d> scan_points_;
+
+  // The scan's returns placed in the world from the estimate just made: what the map is
+  // built from, for the map figure.
+  void AddScanPoints(const LaserScan& scan) {
+    const Pose2 laser = slam_.Estimate().Compose(scan.laser_offset);
+    for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
+      if (!scan.IsReturn(i)) continue;
+      const double r = scan.ranges_m[i];
+      const double a = scan.BeamAngle(i);
+      scan_points_.push_back(
+          laser.TransformFrom(Eigen::Vector2d(r * std::cos(a), r * std::sin(a))));
+    }
+  }
 };
 
 std::vector<double> PoseNees(const ExplorationRun& run,
@@ -59,6 +81,8 @@ ExploreResult RunFeatureExploration(const FloorPlan& plan, const ExplorationConf
   ExploreResult out;
   out.run = RunExploration(plan, config.start, slam, config.run, rng);
   out.nees = PoseNees(out.run, slam.covariances());
+  out.accuracy = slam.accuracy();
+  out.scan_points = slam.TakeScanPoints();
   CollectMap(slam.slam(), &out);
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

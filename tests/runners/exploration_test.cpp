@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
+#include <vector>
 
 #include "slamkit/io/floor_plan_reader.hpp"
 
@@ -14,19 +16,25 @@ namespace {
 class DeadReckoning final : public ExplorationSlam {
  public:
   explicit DeadReckoning(double cost_s) : cost_s_(cost_s) {}
-  void Step(const Pose2& odometry_delta, const LaserScan& /*scan*/) override {
+  void Step(const Pose2& odometry_delta, const LaserScan& scan) override {
     pose_ = pose_.Compose(odometry_delta);
     ++steps_;
+    if (keep_scans_) scans_.push_back(scan);
   }
   Pose2 Estimate() const override { return pose_; }
   double ModelledCostS() const override { return cost_s_; }
   int steps() const { return steps_; }
   void Start(const Pose2& p) { pose_ = p; }
+  // Keeps every scan it is handed: the loop gives the explorer the same scan.
+  void KeepScans() { keep_scans_ = true; }
+  const std::vector<LaserScan>& scans() const { return scans_; }
 
  private:
   double cost_s_;
   Pose2 pose_;
   int steps_ = 0;
+  bool keep_scans_ = false;
+  std::vector<LaserScan> scans_;
 };
 
 FloorPlan Office() {
@@ -34,10 +42,12 @@ FloorPlan Office() {
                                      "examples/plans/office.txt")};
 }
 
-ExplorationRun Explore(double cost_s, std::uint64_t seed, double max_time_s) {
+ExplorationRun Explore(double cost_s, std::uint64_t seed, double max_time_s,
+                       DeadReckoning* recorder = nullptr) {
   ExplorationParams params;
   params.max_time_s = max_time_s;
-  DeadReckoning slam(cost_s);
+  DeadReckoning own(cost_s);
+  DeadReckoning& slam = recorder != nullptr ? *recorder : own;
   const Pose2 start(4.0, 15.0, 0.0);
   slam.Start(start);
   Rng rng(seed);
@@ -82,6 +92,49 @@ TEST(RunExploration, TheEstimateIsTheSlamsAndTheRobotExplores) {
   // The odometry noise is there: the SLAM is not handed the truth.
   EXPECT_GT((run.truth.back().pose.translation() - run.odometry.back().pose.translation()).norm(),
             0.01);
+}
+
+// The commands a fresh explorer gives for a run's (estimate, scan, time) inputs, each scan's
+// logged pose (what a log may carry beside the odometry) set by `logged(i)` and each estimate
+// moved by `shift`.
+std::vector<Control> Replay(const ExplorationRun& run, const std::vector<LaserScan>& scans,
+                            const std::function<Pose2(std::size_t)>& logged,
+                            const Pose2& shift = Pose2()) {
+  FrontierExplorer explorer(ExplorationParams{}.explorer);
+  std::vector<Control> commands;
+  for (std::size_t i = 0; i < run.commands.size(); ++i) {
+    LaserScan scan = scans[i];
+    scan.logged_pose = logged(i);
+    const StampedPose& at = run.planner_pose[i];
+    commands.push_back(explorer.Step(at.pose.Compose(shift), scan, at.t_s));
+  }
+  return commands;
+}
+
+// Issue 10: the planner never uses the truth. Its inputs replayed give the run's commands again;
+// with the true pose, perturbed, put where the scan could carry it, still the same commands;
+// with the estimate perturbed instead, other commands (so the replay does feed the explorer).
+TEST(RunExploration, ThePlannerNeverReadsTheTruth) {
+  DeadReckoning recorder(0.05);
+  recorder.KeepScans();
+  const ExplorationRun run = Explore(0.05, 5, 90.0, &recorder);
+  ASSERT_EQ(run.commands.size(), run.truth.size());
+  ASSERT_EQ(recorder.scans().size(), run.truth.size());
+  ASSERT_GT(run.commands.size(), 100u);
+  const auto none = [](std::size_t) { return Pose2(); };
+  const auto perturbed_truth = [&run](std::size_t i) {
+    return run.truth[i].pose.Compose(Pose2(0.7, -0.4, 0.5));
+  };
+  const std::vector<Control> again = Replay(run, recorder.scans(), none);
+  const std::vector<Control> with_truth = Replay(run, recorder.scans(), perturbed_truth);
+  for (std::size_t i = 0; i < run.commands.size(); ++i) {
+    ASSERT_EQ(again[i], run.commands[i]) << "step " << i;
+    ASSERT_EQ(with_truth[i], run.commands[i]) << "step " << i;
+  }
+  const std::vector<Control> shifted = Replay(run, recorder.scans(), none, Pose2(0.3, 0.2, 0.3));
+  int differ = 0;
+  for (std::size_t i = 0; i < run.commands.size(); ++i) differ += shifted[i] != run.commands[i];
+  EXPECT_GT(differ, int(run.commands.size()) / 2);
 }
 
 }  // namespace

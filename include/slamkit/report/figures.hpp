@@ -31,6 +31,52 @@ struct PathFigureData {
 // std::runtime_error naming `path` when it cannot be written; a failure leaves no file.
 void WritePathFigure(const std::filesystem::path& path, const PathFigureData& data);
 
+struct Segment2 {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+};
+// A line-and-corner map: true walls (thin grey), raw scan points in the world (light dots;
+// decimated when many), the mapped line segments (bold), corners (markers), and the paths.
+// Empty members are not drawn.
+struct LineMapFigureData {
+  std::string title;
+  std::vector<Segment2> walls;
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Segment2> lines;
+  std::vector<Eigen::Vector2d> corners;
+  Trajectory truth;
+  Trajectory estimate;
+  Trajectory odometry;
+  int width_px = 1200;
+  int height_px = 1000;
+};
+// Formats and failures as for WritePathFigure (png/svg by extension, atomic, throws).
+void WriteLineMapFigure(const std::filesystem::path& path, const LineMapFigureData& data);
+
+// One curve of a series figure.
+struct Series {
+  std::string label;  // in the legend; empty: left out of it
+  std::vector<double> x;
+  std::vector<double> y;
+  int colour = -1;     // index into a fixed palette (blue, red, green, magenta, cyan, black,
+                       // grey; wraps); -1: the series' own index
+  bool dashed = false;
+};
+
+// Curves over a common x axis with a legend (e.g. accumulated SLAM time per selection policy).
+struct SeriesFigureData {
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  std::vector<Series> series;
+  int width_px = 1200;
+  int height_px = 800;
+};
+
+// Throws std::invalid_argument when a series' x and y differ in length. Formats and failures as
+// for WritePathFigure.
+void WriteSeriesFigure(const std::filesystem::path& path, const SeriesFigureData& data);
+
 // Consistency over time: ANEES per step with its χ² band (top panel), and position and heading
 // RMSE per step (bottom panels).
 struct ConsistencyFigureData {

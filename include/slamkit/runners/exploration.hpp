@@ -45,6 +45,10 @@ struct ExplorationRun {
   Trajectory estimate;
   Trajectory odometry;
   std::vector<double> slam_time_s;  // per step, as ExplorationParams::timing says
+  // Per step, what the explorer was given (the estimate carried to the command's start, at that
+  // time; the scan is the step's) and the command it gave: its inputs, to check what it reads.
+  Trajectory planner_pose;
+  std::vector<Control> commands;
   double open_loop_time_s = 0.0;    // Σ ⌈t / period⌉ · period over the steps
   double elapsed_s = 0.0;           // simulated time at the end
   ExplorerMode final_mode = ExplorerMode::kTurning;

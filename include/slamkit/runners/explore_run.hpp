@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -22,9 +23,15 @@ struct MappedLine {
 
 struct ExploreResult {
   ExplorationRun run;
-  std::vector<double> nees;  // pose NEES (3 dof) per step against the truth
+  std::vector<double> nees;  // pose NEES (3 dof) per step against the truth, from step 1
+  // Per step (as run.truth), SPEC S1 Eq. 24's accuracy ratio of the step's selection, when
+  // config.slam.ekf.selection_diagnostics is on (none for a step with nothing to reduce); empty
+  // when it is off.
+  std::vector<std::optional<double>> accuracy;
   std::vector<MappedLine> lines;               // one per wall (merged landmarks left out)
   std::vector<Eigen::Vector2d> corners;
+  // Every scan's returns in the world, placed by the estimate of that step (for the map figure).
+  std::vector<Eigen::Vector2d> scan_points;
   double wall_time_s = 0.0;
 };
 
