@@ -1,5 +1,7 @@
 #include "slamkit/filters/feature_ekf_slam.hpp"
 
+#include "slamkit/features/line_fit.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -227,6 +229,26 @@ Linearisation FeatureEkfSlam::SameLine(int i, int j) const {
   return c;
 }
 
+// Whether lines `a` and `b` (with their seen extents) are one wall by their own geometry: the
+// angle between them and each extent's distance from the other's line within the separation
+// under which association would not start a second landmark (new_min_separation_*). The χ² test
+// alone is not enough: two parallel walls a metre apart pass it while the filter is uncertain,
+// and the fusion's hard constraint would then drag the map and the pose onto one of them.
+bool FeatureEkfSlam::NearlySameLine(const PolarLine& a, const LineExtent& ea, const PolarLine& b,
+                                    const LineExtent& eb) const {
+  const double max_rho = params_.lines.new_min_separation_rho_m;
+  if (std::abs(WrapAngle(a.alpha_rad - b.alpha_rad)) > params_.lines.new_min_separation_alpha_rad) {
+    return false;
+  }
+  for (const Eigen::Vector2d& p : {eb.start_m, eb.end_m}) {
+    if (std::abs(DistanceToLine(a, p)) > max_rho) return false;
+  }
+  for (const Eigen::Vector2d& p : {ea.start_m, ea.end_m}) {
+    if (std::abs(DistanceToLine(b, p)) > max_rho) return false;
+  }
+  return true;
+}
+
 // Two landmarks started from glimpses of one wall that did not overlap (seen through two doors)
 // meet once its extent has grown: a landmark matched in this scan whose extent now overlaps
 // another's, with (ρ, α) compatible (l_i − l_j within the χ² gate of its covariance), is fused
@@ -240,7 +262,7 @@ void FeatureEkfSlam::FuseMetLines(const FeatureDecisions& d) {
       if (j == i || !lines_.Active(j)) continue;
       const LineExtent &a = lines_.Extent(i), &b = lines_.Extent(j);
       const PolarLine l = Line(i);
-      if (std::abs(WrapAngle(l.alpha_rad - Line(j).alpha_rad)) > 0.5 ||
+      if (!NearlySameLine(l, a, Line(j), b) ||
           SegmentOverlapM(a.start_m, a.end_m, b.start_m, b.end_m, l.alpha_rad) <= 0.0) {
         continue;
       }

@@ -120,11 +120,13 @@ void ProcessScan(const LaserScan& scan, const Pose2& delta, bool first, const Fe
 LineExtractionParams FeatureLogParams::LogExtractionDefaults() {
   LineExtractionParams p;
   p.max_usable_range_m = 10.0;  // SPEC S1's
-  // Real walls are not the straight, 1 cm-noise lines the beam model assumes (clutter, glass,
-  // bias): at 0.01 m the lines' covariances are too tight for the next scan's sighting of the
-  // same wall; 0.05 is the best on both intel.clf and suite/csail.log.gz of 0.01-0.12
-  // (docs/feature_slam_logs.md).
+  // Real walls are not the straight lines of 1 cm beam noise the fit assumes (clutter, doors,
+  // glass, the laser's bias): with the simulator's values the lines' covariances are too tight
+  // for the next sighting of the same wall, which then starts a second landmark and the map
+  // bends. Chosen on the six logs of docs/feature_slam_logs.md (intel.clf and five of suite/).
   p.sigma_range_m = 0.05;
+  p.wall_sigma_rho_m = 0.1;
+  p.wall_sigma_alpha_rad = 0.03;
   return p;
 }
 

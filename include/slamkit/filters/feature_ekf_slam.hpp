@@ -106,6 +106,8 @@ class FeatureEkfSlam {
                                           const std::vector<PointObservation>& corners) const;
   void ExtendMatchedLines(const ScanFeatures& scan, const FeatureDecisions& d);
   Linearisation SameLine(int i, int j) const;
+  bool NearlySameLine(const PolarLine& a, const LineExtent& ea, const PolarLine& b,
+                      const LineExtent& eb) const;
   void FuseMetLines(const FeatureDecisions& d);
   void AugmentNew(const ScanFeatures& scan, const std::vector<PointObservation>& corners,
                   FeatureDecisions& d);
