@@ -37,8 +37,7 @@ void WriteFeatureOutputs(const std::filesystem::path& dir, const FeatureLogResul
   WriteTumTrajectory(dir / "trajectory.tum", WithIncreasingTimes(r.trajectory));
   WriteTumTrajectory(dir / "odometry.tum", WithIncreasingTimes(odometry));
   WriteLinesCsv(dir / "lines.csv", r.lines);
-  WriteFeatureMapFigure(dir / "map.png", title, r.lines, r.corners, r.points, r.trajectory,
-                        odometry);
+  WriteFeatureMapFigure(dir / "map.png", title, r.lines, r.corners, r.points, r.trajectory);
 }
 
 void PrintFeatureRun(const std::string& log, const FeatureLogResult& r, const FeatureLogParams& p) {

@@ -24,15 +24,14 @@ void WriteLinesCsv(const std::filesystem::path& path, const std::vector<MappedLi
 void WriteFeatureMapFigure(const std::filesystem::path& path, const std::string& title,
                            const std::vector<MappedLine>& lines,
                            const std::vector<Eigen::Vector2d>& corners,
-                           const std::vector<Eigen::Vector2d>& points, const Trajectory& estimate,
-                           const Trajectory& odometry) {
+                           const std::vector<Eigen::Vector2d>& points,
+                           const Trajectory& estimate) {
   LineMapFigureData figure;
   figure.title = title;
   for (const MappedLine& l : lines) figure.lines.push_back({l.start_m, l.end_m});
   figure.corners = corners;
   figure.points = points;
   figure.estimate = estimate;
-  figure.odometry = odometry;
   WriteLineMapFigure(path, figure);
 }
 

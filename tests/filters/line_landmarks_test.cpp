@@ -201,6 +201,27 @@ TEST(FeatureEkfSlam, LandmarksOfOneWallAreFusedWhenTheirExtentsMeet) {
   EXPECT_EQ(slam.Update(whole).lines[0].landmark, 0);
 }
 
+// Two parallel walls 0.6 m apart, seen so uncertainly that their difference passes the χ² gate:
+// they are two walls by their geometry (beyond the new-landmark separation), so they are never
+// fused, which would pull both, and the pose, onto one line.
+TEST(FeatureEkfSlam, UncertainParallelWallsAreNotFused) {
+  FeatureEkfSlam slam = MakeSlam();
+  auto uncertain = [](LineSegment s) {
+    s.covariance = Eigen::Vector2d(0.25, 1e-3).asDiagonal();
+    return s;
+  };
+  ScanFeatures both;
+  both.lines = {uncertain(Wall(2.0, kPi / 2, -3.0, 3.0)), uncertain(Wall(2.6, kPi / 2, -2.0, 2.0))};
+  slam.Update(both);
+  ASSERT_EQ(slam.NumActiveLines(), 2);
+  ScanFeatures near_one;
+  near_one.lines = {uncertain(Wall(2.0, kPi / 2, -3.0, 3.0))};
+  const FeatureDecisions d = slam.Update(near_one);
+  ASSERT_EQ(d.lines[0].kind, AssociationDecision::Kind::kMatched);
+  EXPECT_EQ(slam.NumActiveLines(), 2);
+  EXPECT_NEAR(std::abs(slam.Line(1).rho_m - slam.Line(0).rho_m), 0.6, 0.05);
+}
+
 TEST(FeatureEkfSlam, ShortSightingsStartNoLandmark) {
   FeatureEkfSlam slam = MakeSlam();
   ScanFeatures scan;
