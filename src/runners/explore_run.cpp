@@ -63,16 +63,23 @@ std::vector<double> PoseNees(const ExplorationRun& run,
   return nees;
 }
 
-void CollectMap(const FeatureEkfSlam& slam, ExploreResult* out) {
+}  // namespace
+
+std::vector<MappedLine> MappedLines(const FeatureEkfSlam& slam) {
+  std::vector<MappedLine> lines;
   for (int i = 0; i < slam.NumLines(); ++i) {
     if (slam.LineMergedInto(i) >= 0) continue;
     const LineExtent& extent = slam.LineExtentOf(i);
-    out->lines.push_back({slam.Line(i), slam.LineCovariance(i), extent.start_m, extent.end_m});
+    lines.push_back({slam.Line(i), slam.LineCovariance(i), extent.start_m, extent.end_m});
   }
-  for (int i = 0; i < slam.NumCorners(); ++i) out->corners.push_back(slam.CornerPosition(i));
+  return lines;
 }
 
-}  // namespace
+std::vector<Eigen::Vector2d> MappedCorners(const FeatureEkfSlam& slam) {
+  std::vector<Eigen::Vector2d> corners;
+  for (int i = 0; i < slam.NumCorners(); ++i) corners.push_back(slam.CornerPosition(i));
+  return corners;
+}
 
 ExploreResult RunFeatureExploration(const FloorPlan& plan, const ExplorationConfig& config) {
   const auto start = std::chrono::steady_clock::now();
@@ -83,7 +90,8 @@ ExploreResult RunFeatureExploration(const FloorPlan& plan, const ExplorationConf
   out.nees = PoseNees(out.run, slam.covariances());
   out.accuracy = slam.accuracy();
   out.scan_points = slam.TakeScanPoints();
-  CollectMap(slam.slam(), &out);
+  out.lines = MappedLines(slam.slam());
+  out.corners = MappedCorners(slam.slam());
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -48,16 +48,6 @@ void AddPoints(const LaserScan& scan, const Pose2& robot, double max_range_m,
   }
 }
 
-void CollectFeatureMap(const FeatureEkfSlam& slam, FeatureLogResult* out) {
-  for (int i = 0; i < slam.NumLines(); ++i) {
-    if (slam.LineMergedInto(i) >= 0) continue;
-    const LineExtent& extent = slam.LineExtentOf(i);
-    out->lines.push_back({slam.Line(i), slam.LineCovariance(i), extent.start_m, extent.end_m});
-  }
-  for (int i = 0; i < slam.NumCorners(); ++i) out->corners.push_back(slam.CornerPosition(i));
-  out->state_size = slam.ekf().StateSize();
-}
-
 // `gate_chi2` and `new_chi2` are the association's two gates (LineAssociationParams,
 // AssociationParams): a dropped sighting's distance to its nearest landmark says why it was.
 void Count(const std::vector<AssociationDecision>& decisions, double gate_chi2, double new_chi2,
@@ -164,7 +154,9 @@ FeatureLogResult RunFeatureSlamOnLog(const CarmenLog& log, const FeatureLogParam
     }
   }
   slam.CheckOutputHealth();
-  CollectFeatureMap(slam, &out);
+  out.lines = MappedLines(slam);
+  out.corners = MappedCorners(slam);
+  out.state_size = slam.ekf().StateSize();
   out.wall_time_s = SecondsSince(start);
   return out;
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slamkit/core/trajectory.hpp"
+#include "slamkit/filters/feature_ekf_slam.hpp"
 #include "slamkit/models/line_sensor.hpp"
 #include "slamkit/runners/exploration_config.hpp"
 #include "slamkit/sim/floor_plan.hpp"
@@ -20,6 +21,10 @@ struct MappedLine {
   Eigen::Vector2d start_m;
   Eigen::Vector2d end_m;
 };
+
+// The final map of a line-and-corner EKF: its walls (merged landmarks left out) and corners.
+std::vector<MappedLine> MappedLines(const FeatureEkfSlam& slam);
+std::vector<Eigen::Vector2d> MappedCorners(const FeatureEkfSlam& slam);
 
 struct ExploreResult {
   ExplorationRun run;
