@@ -1,5 +1,6 @@
 // `slamkit run`: EKF-SLAM over a real data set.
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -17,7 +18,9 @@ namespace {
 struct RunOptions {
   std::string isam;
   std::string out;
-  bool known_association = false;
+  AssociationMethod association = AssociationMethod::kNearestNeighbour;
+  bool known_association = false;  // the older spelling of --association known
+  long jcbb_max_joint_tests = JcbbParams{}.max_joint_tests;
   double odometry_covariance_scale = 1.0;
   double sighting_covariance_scale = 1.0;
   double gate_chi2 = AssociationParams{}.gate_chi2;
@@ -25,12 +28,21 @@ struct RunOptions {
   bool no_figures = false;
 };
 
+const char* AssociationName(AssociationMethod m) {
+  switch (m) {
+    case AssociationMethod::kKnown: return "known";
+    case AssociationMethod::kJointCompatibility: return "joint-compatibility";
+    case AssociationMethod::kNearestNeighbour: break;
+  }
+  return "nearest-neighbour";
+}
+
 int RunIsamCommand(const RunOptions& o) {
   const IsamLog log = ReadIsamLog(o.isam);
   OutputDir output(o.out);
   IsamRunParams params;
-  params.ekf.association_method =
-      o.known_association ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
+  params.ekf.association_method = o.known_association ? AssociationMethod::kKnown : o.association;
+  params.ekf.jcbb.max_joint_tests = o.jcbb_max_joint_tests;
   params.ekf.association.gate_chi2 = o.gate_chi2;
   params.ekf.association.new_landmark_chi2 = o.new_landmark_chi2;
   params.odometry_covariance_scale = o.odometry_covariance_scale;
@@ -40,7 +52,7 @@ int RunIsamCommand(const RunOptions& o) {
   if (!o.no_figures) {
     PathFigureData figure;
     figure.title = fmt::format("{} ({} association)", std::filesystem::path(o.isam).filename().string(),
-                               o.known_association ? "known" : "nearest-neighbour");
+                               AssociationName(params.ekf.association_method));
     figure.estimate = result.estimate;
     figure.map = result.map;
     WritePathFigure(dir / "map.png", figure);
@@ -48,7 +60,7 @@ int RunIsamCommand(const RunOptions& o) {
   WriteIsamOutputs(dir, IsamMetrics(result, params), result);  // metrics.json last
   output.Commit();
   fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
-             result.sightings, o.known_association ? "known" : "nearest-neighbour");
+             result.sightings, AssociationName(params.ekf.association_method));
   fmt::print("  {:<28}{:>12}\n", "landmarks mapped", result.map.landmarks.size());
   fmt::print("  {:<28}{:>12}\n", "sightings dropped", result.dropped);
   fmt::print("  {:<28}{:>12.4f}\n", "association agreement", result.association_agreement);
@@ -67,8 +79,20 @@ void RegisterRun(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
-  cmd->add_flag("--known-association", o->known_association,
-                "use the file's landmark ids instead of nearest-neighbour association");
+  cmd->add_option("--association", o->association,
+                  "nn (nearest neighbour), jcbb (joint compatibility, Neira & Tardos 2001) or "
+                  "known (the file's landmark ids)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, AssociationMethod>{
+          {"nn", AssociationMethod::kNearestNeighbour},
+          {"jcbb", AssociationMethod::kJointCompatibility},
+          {"known", AssociationMethod::kKnown}}))
+      ->default_str("nn");
+  cmd->add_flag("--known-association", o->known_association, "the same as --association known")
+      ->excludes("--association");
+  cmd->add_option("--jcbb-max-tests", o->jcbb_max_joint_tests,
+                  "jcbb: most joint-compatibility tests per scan before taking the best found")
+      ->capture_default_str()
+      ->check(NonNegativeNumber());
   cmd->add_option("--odometry-cov-scale", o->odometry_covariance_scale,
                   "multiply the file's odometry covariances")
       ->capture_default_str()

@@ -31,7 +31,12 @@ const BlockKind kPointKind{2, {}, false};
 }  // namespace
 
 std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params) {
-  if (params.known_association()) return std::make_unique<KnownAssociation>();
+  switch (params.association_method) {
+    case AssociationMethod::kKnown: return std::make_unique<KnownAssociation>();
+    case AssociationMethod::kJointCompatibility:
+      return std::make_unique<JcbbAssociator>(params.association, params.jcbb);
+    case AssociationMethod::kNearestNeighbour: break;
+  }
   return std::make_unique<NearestNeighbourAssociator>(params.association);
 }
 
@@ -235,7 +240,8 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
   // A landmark takes at most one sighting per scan: two sightings are two landmarks.
   std::vector<char> taken(NumLandmarks() + observations.size(), 0);
   const int n = static_cast<int>(observations.size());
-  if (params_.schedule == UpdateSchedule::kPerScan) {
+  if (params_.schedule == UpdateSchedule::kPerScan ||
+      params_.association_method == AssociationMethod::kJointCompatibility) {
     RunPipeline(observations, taken, decisions);
   } else {
     for (int i = 0; i < n; ++i) RunPipeline(observations.subspan(i, 1), taken, decisions);

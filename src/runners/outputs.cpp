@@ -140,7 +140,11 @@ void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::js
 }
 
 nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) {
+  const AssociationMethod m = params.ekf.association_method;
   return {{"known_association", params.ekf.known_association()},
+          {"association", m == AssociationMethod::kKnown                ? "known"
+                          : m == AssociationMethod::kJointCompatibility ? "jcbb"
+                                                                        : "nn"},
           {"poses", r.estimate.size()},
           {"sightings", r.sightings},
           {"dropped", r.dropped},

@@ -35,6 +35,26 @@ TEST(VictoriaPark, KnownAssociationMapsEveryFileLandmark) {
   EXPECT_TRUE(fs::exists(dir / "map.png"));
 }
 
+// Each associator the command names runs and is recorded; a name it does not know is an
+// argument error.
+TEST(VictoriaPark, TheAssociationIsChosenByName) {
+  if (!fs::exists(kVictoria)) GTEST_SKIP() << "no " << kVictoria;
+  for (const std::string name : {"nn", "jcbb", "known"}) {
+    const fs::path dir = FreshDir("victoria_" + name);
+    const auto r = RunCli("run --isam " + kVictoria + " --association " + name +
+                          " --no-figures --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto m = nlohmann::json::parse(ReadText(dir / "metrics.json"));
+    EXPECT_EQ(m["association"], name);
+    EXPECT_EQ(m["known_association"], name == "known");
+    EXPECT_GT(m["landmarks_mapped"].get<int>(), 100);
+  }
+  const auto bad = RunCli("run --isam " + kVictoria + " --association ml --out " +
+                          FreshDir("victoria_bad").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("--association"), std::string::npos) << bad.output;
+}
+
 TEST(Intel, GridSlamOnTheFirstScansWritesTheContractFiles) {
   const std::string carmen = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/";
   if (!fs::exists(carmen + "intel.clf")) GTEST_SKIP() << "no intel.clf";

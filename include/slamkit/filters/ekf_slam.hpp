@@ -12,6 +12,7 @@
 #include "slamkit/core/state_health.hpp"
 #include "slamkit/filters/block_ekf.hpp"
 #include "slamkit/filters/data_association.hpp"
+#include "slamkit/filters/jcbb.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/filters/point_landmark_model.hpp"
 #include "slamkit/filters/selection.hpp"
@@ -26,6 +27,7 @@ namespace slamkit {
 enum class AssociationMethod {
   kNearestNeighbour,  // SPEC S2, Eqs. 6-7
   kKnown,             // each observation's id is its landmark (simulator truth, a data set's)
+  kJointCompatibility,  // JCBB (Neira & Tardós 2001), over the whole scan (see `schedule`)
 };
 
 // When association runs relative to the updates of a scan.
@@ -41,6 +43,8 @@ enum class UpdateSchedule {
 struct EkfSlamParams {
   AssociationMethod association_method = AssociationMethod::kNearestNeighbour;
   AssociationParams association;
+  JcbbParams jcbb;  // with kJointCompatibility
+  // kJointCompatibility needs the whole scan at once: with it the schedule is always kPerScan.
   UpdateSchedule schedule = UpdateSchedule::kPerObservation;
   // A landmark farther than the sensor's range plus this margin from the estimated pose is not
   // considered for association (saves the Mahalanobis test on landmarks that cannot be seen).
