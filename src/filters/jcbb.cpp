@@ -1,10 +1,11 @@
 #include "slamkit/filters/jcbb.hpp"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <limits>
 #include <stdexcept>
+
+#include <Eigen/Cholesky>
+#include <boost/math/distributions/chi_squared.hpp>
 
 namespace slamkit {
 

@@ -2,11 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Core>
-#include <Eigen/LU>
 #include <set>
 #include <stdexcept>
 #include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
 
 namespace slamkit {
 namespace {
