@@ -84,6 +84,21 @@ int BlockEkf::AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov
   return index;
 }
 
+BlockEkf BlockEkf::Marginal(std::span<const int> blocks) const {
+  int dim = 0;
+  for (const int b : blocks) dim += BlockDim(b);
+  BlockEkf m(dim);
+  for (std::size_t k = 1; k < kinds_.size(); ++k) m.RegisterKind(kinds_[k]);  // 0: the pose
+  for (const int b : blocks) m.AddBlock(BlockKindOf(b), Mean(b), CovarianceBlock(b, b));
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    for (std::size_t j = i + 1; j < blocks.size(); ++j) {
+      m.P_.block(m.BlockOffset(int(i)), m.BlockOffset(int(j)), m.BlockDim(int(i)),
+                 m.BlockDim(int(j))) = CovarianceBlock(blocks[i], blocks[j]);
+    }
+  }
+  return m;
+}
+
 // Records a block whose mean and covariance are already written at offset n_.
 int BlockEkf::AppendBlock(int kind) {
   const int dim = kinds_[kind].dim;

@@ -473,3 +473,58 @@ TEST(TestModels, JacobiansMatchCentralDifferences) {
 
 }  // namespace
 }  // namespace slamkit
+
+namespace slamkit {
+namespace {
+
+// The marginal of a few blocks holds their means and joint covariance (through a pending
+// downdate), and an update touching only them leaves them as the whole filter's update does.
+TEST(BlockEkf, MarginalIsTheBlocksJointGaussianAndUpdatesAsTheWholeFilter) {
+  const RangeBearingModel sensor;
+  BlockEkf ekf(8);
+  const int point_kind = ekf.RegisterKind({2, {}, false});
+  const PointLandmarkModel points(sensor, point_kind, 5.0);
+  ekf.AddBlock(kPoseKind, Eigen::Vector3d(0.0, 0.0, 0.3),
+               Eigen::Vector3d(0.1, 0.1, 0.01).asDiagonal());
+  const Eigen::Matrix2d R = Eigen::Vector2d(0.05 * 0.05, 0.01 * 0.01).asDiagonal();
+  const int pose[] = {0};
+  std::vector<int> l;
+  for (int i = 0; i < 5; ++i) {
+    l.push_back(AugmentFrom(points, ekf, pose, Eigen::Vector2d(4.0 + i, 0.3 * i - 0.6), R));
+  }
+  const OdometryModel motion;
+  Eigen::Matrix3d J_x;
+  ControlJacobian J_u;
+  const Pose2 moved = motion.Move(ekf.PoseOf(0), Odo(0.5, 0.1, 0.05), 1.0, &J_x, &J_u);
+  ekf.PredictPose(0, moved, J_x, J_u, motion.Noise(Odo(0.5, 0.1, 0.05), 1.0));
+  const int seen[] = {0, l[1]};
+  ekf.Update(Linearise(points, ekf, seen, Eigen::Vector2d(3.9, -0.35), R));  // left pending
+  ASSERT_TRUE(ekf.HasPendingDowndate());
+
+  const std::vector<int> blocks = {l[3], 0, l[1]};
+  BlockEkf m = ekf.Marginal(blocks);
+  ASSERT_EQ(m.NumBlocks(), 3);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(m.BlockKindOf(i), ekf.BlockKindOf(blocks[i]));
+    EXPECT_LT(MaxAbsDiff(m.Mean(i), ekf.Mean(blocks[i])), 1e-15);
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_LT(MaxAbsDiff(m.CovarianceBlock(i, j), ekf.CovarianceBlock(blocks[i], blocks[j])),
+                1e-15);
+    }
+  }
+  const int full_blocks[] = {0, l[3]};
+  const int marginal_blocks[] = {1, 0};
+  const Eigen::Vector2d z(6.9, 0.25);
+  ekf.Update(Linearise(points, ekf, full_blocks, z, R));
+  m.Update(Linearise(points, m, marginal_blocks, z, R));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(MaxAbsDiff(m.Mean(i), ekf.Mean(blocks[i])), 1e-12);
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_LT(MaxAbsDiff(m.CovarianceBlock(i, j), ekf.CovarianceBlock(blocks[i], blocks[j])),
+                1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace slamkit

@@ -146,6 +146,11 @@ class BlockEkf {
   Eigen::MatrixXd CovarianceBlock(int a, int b) const;
   // The full symmetric covariance and the mean (copies; O(n²), for tests and output).
   Eigen::MatrixXd Covariance() const;
+  // A filter of `blocks` alone (in that order: block i of the result is blocks[i]), with the
+  // same kinds, their current means and their joint covariance: the marginal. An update that
+  // touches only these blocks changes them exactly as it would in the whole filter, at O(k²) for
+  // their k entries instead of O(n²). Each block at most once.
+  BlockEkf Marginal(std::span<const int> blocks) const;
   Eigen::VectorXd State() const { return x_.head(n_); }
   // GaussianHealthProblem() of the mean and the effective covariance P₀ − U Uᵀ (a pending
   // downdate is accounted for, not applied: the check only reads). O(n²), O(n³) with `check_psd`.

@@ -103,8 +103,9 @@ struct MatchedObservation {
 // log-determinants read the covariance through the pending downdate without applying it.
 class BlockSelectionSession final : public SelectionSession {
  public:
-  // With `diagnostics`, the full sequential update of all `observations` is run first on a copy
-  // of `ekf` (O(n²) for the copy) to fill stats().all_log_ratio.
+  // With `diagnostics`, the full sequential update of all `observations` is run first on the
+  // marginal of the blocks they touch (BlockEkf::Marginal, O(k²) in their k entries) to fill
+  // stats().all_log_ratio.
   BlockSelectionSession(BlockEkf& ekf, std::vector<MatchedObservation> observations,
                         bool diagnostics = false);
 
