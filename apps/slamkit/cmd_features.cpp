@@ -1,5 +1,5 @@
-// `slamkit features`: the line-and-corner EKF-SLAM of SPEC S1 on a CARMEN laser
-// log, its odometry as the motion, scored as `slamkit grid` is.
+// `slamkit features`: the line-and-corner EKF-SLAM of SPEC S1 on a CARMEN laser log, its
+// odometry as the motion, scored as `slamkit grid` is.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -85,18 +85,10 @@ int RunFeaturesCommand(FeaturesOptions o) {
   PrintFeatureRun(o.input.log, result, o.params);
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
-  if (eval.reference) PrintComparison("reference", *eval.reference);
-  fmt::print("wrote {}\n", o.out);
-  if (!eval.error.empty()) {
-    PrintStderr("error: the evaluation failed ({}); the run's outputs are kept in {}\n", eval.error,
-                o.out);
-    return 1;
-  }
-  return 0;
+  return ReportEvaluation(o.input, eval, o.out);
 }
 
-// The filter's options, which --config replaces (--policy and the run's options
-// apply to both).
+// The filter's options, which --config replaces (--policy and the run's options apply to both).
 std::vector<CLI::Option*> AddFilterOptions(CLI::App* cmd, FeaturesOptions& o) {
   FeatureLogParams& p = o.params;
   std::vector<CLI::Option*> options;

@@ -96,16 +96,7 @@ int RunGridCommand(const GridOptions& o) {
   PrintGridRun(o.input.log, result, params.particles);
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
-  if (eval.reference) {
-    PrintComparison(o.input.reference_from_log ? "log poses" : "reference", *eval.reference);
-  }
-  fmt::print("wrote {}\n", o.out);
-  if (!eval.error.empty()) {
-    PrintStderr("error: the evaluation failed ({}); the run's outputs are kept in {}\n",
-                eval.error, o.out);
-    return 1;
-  }
-  return 0;
+  return ReportEvaluation(o.input, eval, o.out);
 }
 
 }  // namespace

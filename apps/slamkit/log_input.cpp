@@ -107,8 +107,7 @@ LogEvaluation EvaluateOnLog(const LogInput& in, const Trajectory& estimate,
                             const std::optional<Trajectory>& reference) {
   LogEvaluation e;
   try {
-    // A run that stopped early, or over --max-scans, is scored on what it
-    // covered.
+    // A run that stopped early, or over --max-scans, is scored on what it covered.
     if (in.max_scans > 0 || estimate.size() < odometry.size()) {
       relations = RelationsCovered(estimate, relations);
     }
@@ -153,6 +152,15 @@ void AddLogInputMetrics(const LogInput& in, const CarmenLog& log, const LogEvalu
     metrics["odometry_rpe_rot_mean_deg"] = e.odometry_reference->rpe.rot_mean_deg;
   }
   if (!e.error.empty()) metrics["evaluation_error"] = e.error;
+}
+
+int ReportEvaluation(const LogInput& in, const LogEvaluation& e, const std::string& out) {
+  if (e.reference) PrintComparison(in.reference_from_log ? "log poses" : "reference", *e.reference);
+  fmt::print("wrote {}\n", out);
+  if (e.error.empty()) return 0;
+  PrintStderr("error: the evaluation failed ({}); the run's outputs are kept in {}\n", e.error,
+              out);
+  return 1;
 }
 
 void PrintRelations(const RelationErrorStats& r) {

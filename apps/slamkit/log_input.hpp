@@ -59,6 +59,11 @@ LogEvaluation EvaluateOnLog(const LogInput& input, const Trajectory& estimate,
 void AddLogInputMetrics(const LogInput& input, const CarmenLog& log, const LogEvaluation& e,
                         nlohmann::json& metrics);
 
+// After the output is in place (`out`): the comparison's rows (against the "log poses" or the
+// "reference"), "wrote DIR", and a failed evaluation's error on stderr. Returns the exit code:
+// 1 when the evaluation failed (the outputs are kept), else 0.
+int ReportEvaluation(const LogInput& input, const LogEvaluation& e, const std::string& out);
+
 // The summary's relation rows (and a warning for relations outside the run).
 void PrintRelations(const RelationErrorStats& r);
 

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "slamkit/core/angle.hpp"
 #include "slamkit/eval/errors.hpp"
+#include "slamkit/features/line_extraction.hpp"
 #include "slamkit/runners/feature_exploration.hpp"
 
 namespace slamkit {
@@ -21,7 +23,9 @@ class RecordingSlam final : public ExplorationSlam {
     slam_.Step(delta, scan);
     covariances_.push_back(slam_.PoseCovariance());
     if (diagnostics_) accuracy_.push_back(slam_.slam().LastSelectionStats().accuracy());
-    AddScanPoints(scan);
+    // The returns placed from the estimate just made: what the map is built from.
+    AppendWorldPoints(scan, slam_.Estimate(), std::numeric_limits<double>::infinity(),
+                      &scan_points_);
   }
   Pose2 Estimate() const override { return slam_.Estimate(); }
   double ModelledCostS() const override { return slam_.ModelledCostS(); }
@@ -36,19 +40,6 @@ class RecordingSlam final : public ExplorationSlam {
   std::vector<Eigen::Matrix3d> covariances_;
   std::vector<std::optional<double>> accuracy_;
   std::vector<Eigen::Vector2d> scan_points_;
-
-  // The scan's returns placed in the world from the estimate just made: what the map is
-  // built from, for the map figure.
-  void AddScanPoints(const LaserScan& scan) {
-    const Pose2 laser = slam_.Estimate().Compose(scan.laser_offset);
-    for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
-      if (!scan.IsReturn(i)) continue;
-      const double r = scan.ranges_m[i];
-      const double a = scan.BeamAngle(i);
-      scan_points_.push_back(
-          laser.TransformFrom(Eigen::Vector2d(r * std::cos(a), r * std::sin(a))));
-    }
-  }
 };
 
 std::vector<double> PoseNees(const ExplorationRun& run,
@@ -64,6 +55,14 @@ std::vector<double> PoseNees(const ExplorationRun& run,
 }
 
 }  // namespace
+
+void AppendWorldPoints(const LaserScan& scan, const Pose2& robot, double max_range_m,
+                       std::vector<Eigen::Vector2d>* points) {
+  const Pose2 laser = robot.Compose(scan.laser_offset);
+  for (const BeamPoint& b : ScanToBeamPoints(scan, max_range_m)) {
+    points->push_back(laser.TransformFrom(b.p));
+  }
+}
 
 std::vector<MappedLine> MappedLines(const FeatureEkfSlam& slam) {
   std::vector<MappedLine> lines;

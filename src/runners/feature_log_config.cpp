@@ -15,8 +15,7 @@ using config::Section;
 
 const std::vector<std::string> kPolicies = {"all", "entropy", "entropy-fast", "covariance"};
 
-// One number of the config: where it lives (section "" is the top level) and
-// what it may be.
+// One number of the config: where it lives (section "" is the top level) and what it may be.
 struct Field {
   const char* section;
   const char* key;
@@ -33,8 +32,7 @@ Field Number(const char* section, const char* key, double* v, Bound bound = Boun
   return {section, key, v, nullptr, nullptr, bound, 0, infinity_allowed};
 }
 
-// The one list both the reader and the JSON writer go through, so they cannot
-// disagree.
+// The one list both the reader and the JSON writer go through, so they cannot disagree.
 std::vector<Field> Fields(FeatureLogParams& p) {
   LineExtractionParams& e = p.extraction;
   LineAssociationParams& l = p.ekf.lines;

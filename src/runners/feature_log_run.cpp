@@ -21,8 +21,7 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The odometry increment as the control of an OdometryModel, with its
-// covariance.
+// The odometry increment as the control of an OdometryModel, with its covariance.
 ControlCovariance IncrementNoise(const Pose2& delta, const FeatureLogParams& p) {
   const Eigen::Vector3d sigma =
       OdometryNoiseSigmas(delta, p.odometry_noise)
@@ -33,19 +32,6 @@ ControlCovariance IncrementNoise(const Pose2& delta, const FeatureLogParams& p) 
 bool MovedEnough(const Pose2& delta, const FeatureLogParams& p) {
   return delta.translation().norm() >= p.linear_update_m ||
          std::abs(delta.theta()) >= p.angular_update_rad;
-}
-
-// The scan's returns used for features, in the world frame, as the estimate
-// places them.
-void AddPoints(const LaserScan& scan, const Pose2& robot, double max_range_m,
-               std::vector<Eigen::Vector2d>* points) {
-  const Pose2 laser = robot.Compose(scan.laser_offset);
-  for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
-    if (!scan.IsReturn(i) || scan.ranges_m[i] >= max_range_m) continue;
-    const double a = scan.BeamAngle(i);
-    points->push_back(laser.TransformFrom(
-        Eigen::Vector2d(scan.ranges_m[i] * std::cos(a), scan.ranges_m[i] * std::sin(a))));
-  }
 }
 
 // `gate_chi2` and `new_chi2` are the association's two gates (LineAssociationParams,
@@ -75,9 +61,8 @@ nlohmann::json CountsJson(const SightingCounts& c) {
           {"dropped_unmatched", c.unmatched}};
 }
 
-// One processed scan: the prediction by the odometry since the last one, then
-// SPEC S1's correction (features, association, selection, updates,
-// augmentation), timed.
+// One processed scan: the prediction by the odometry since the last one, then SPEC S1's
+// correction (features, association, selection, updates, augmentation), timed.
 void ProcessScan(const LaserScan& scan, const Pose2& delta, bool first, const FeatureLogParams& p,
                  FeatureEkfSlam& slam, FeatureLogResult* out) {
   if (!first) {
@@ -91,9 +76,9 @@ void ProcessScan(const LaserScan& scan, const Pose2& delta, bool first, const Fe
   const auto start = Clock::now();
   const FeatureDecisions d =
       slam.Update(ToRobotFrame(ExtractFeatures(scan, p.extraction), scan.laser_offset));
+  const double seconds = SecondsSince(start);
   Count(d.lines, p.ekf.lines.gate_chi2, p.ekf.lines.new_landmark_chi2, &out->lines_seen);
   Count(d.corners, p.ekf.corners.gate_chi2, p.ekf.corners.new_landmark_chi2, &out->corners_seen);
-  const double seconds = SecondsSince(start);
   out->correction_time_s += seconds;
   out->correction_time_max_s = std::max(out->correction_time_max_s, seconds);
   const SelectionStats& stats = slam.LastSelectionStats();
@@ -126,9 +111,7 @@ LineExtractionParams FeatureLogParams::LogExtractionDefaults() {
 FeatureLogResult RunFeatureSlamOnLog(const CarmenLog& log, const FeatureLogParams& params,
                                      const std::function<void(int, int)>& progress) {
   if (log.scans.empty()) {
-    throw InputError(
-        "features: the log has no laser scan (no "
-        "FLASER/ROBOTLASER1/RAWLASER line)");
+    throw InputError("features: the log has no laser scan (no FLASER/ROBOTLASER1/RAWLASER line)");
   }
   const auto start = Clock::now();
   FeatureEkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
@@ -142,7 +125,7 @@ FeatureLogResult RunFeatureSlamOnLog(const CarmenLog& log, const FeatureLogParam
     if (i == 0 || MovedEnough(delta, params)) {
       ProcessScan(scan, delta, i == 0, params, slam, &out);
       last_odometry = scan.odometry;
-      AddPoints(scan, slam.pose(), params.extraction.max_usable_range_m, &out.points);
+      AppendWorldPoints(scan, slam.pose(), params.extraction.max_usable_range_m, &out.points);
       out.trajectory.push_back({scan.t_s, slam.pose()});
     } else {
       out.trajectory.push_back({scan.t_s, slam.pose().Compose(delta)});

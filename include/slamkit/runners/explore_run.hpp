@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/filters/feature_ekf_slam.hpp"
 #include "slamkit/models/line_sensor.hpp"
@@ -25,6 +26,11 @@ struct MappedLine {
 // The final map of a line-and-corner EKF: its walls (merged landmarks left out) and corners.
 std::vector<MappedLine> MappedLines(const FeatureEkfSlam& slam);
 std::vector<Eigen::Vector2d> MappedCorners(const FeatureEkfSlam& slam);
+
+// Appends the returns of `scan` nearer than `max_range_m` (ScanToBeamPoints), placed in the
+// world from the robot pose `robot`: what a line map is drawn over.
+void AppendWorldPoints(const LaserScan& scan, const Pose2& robot, double max_range_m,
+                       std::vector<Eigen::Vector2d>* points);
 
 struct ExploreResult {
   ExplorationRun run;
