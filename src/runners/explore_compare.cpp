@@ -60,7 +60,7 @@ void Accuracy(const std::vector<const CompareRun*>& runs, ComparePolicySummary* 
 }
 
 // One run: its policy and seed in `config`. Selection diagnostics on for the accuracy ratio in
-// modelled timing (they work on a copy of the filter, so the path and the modelled cost stay
+// modelled timing (they work on a marginal of the filter, so the path and the modelled cost stay
 // those without); off in wall timing, where their extra full update would be measured too.
 CompareRun RunOne(const FloorPlan& plan, ExplorationConfig config, SelectionKind policy,
                   std::uint64_t seed, ExploreResult* keep) {

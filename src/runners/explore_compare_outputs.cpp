@@ -144,7 +144,7 @@ std::string ExploreCompareMarkdown(const ExploreCompareResult& result,
              ? fmt::format("SLAM time modelled: each step's counted work at {:.3g} flop/s.\n\n",
                            config.slam.flops_per_second)
              : std::string("SLAM time measured (wall clock), runs one at a time, without the "
-                           "accuracy diagnostics (their full update on a copy would be timed "
+                           "accuracy diagnostics (their extra full update would be timed "
                            "too).\n\n"));
   for (const CovarianceSavings& s : result.savings) {
     md << fmt::format(

@@ -54,10 +54,10 @@ struct EkfSlamParams {
   // When the state's health is checked (finite, symmetric, PSD; see StateHealthParams for the
   // schedule): every update in Debug and sanitizer builds, at output in Release.
   StateHealthParams health;
-  // Whether each step also runs the full sequential update of every matched observation on a
-  // copy of the filter (an O(n²) copy per step, per observation on the per-observation
-  // schedule), so that LastSelectionStats() has the accuracy ratio of SPEC S1, Eq. 24. Off in
-  // normal runs: it would cost what selection saves.
+  // Whether each step also runs the full sequential update of every matched observation on the
+  // marginal of the blocks they touch (BlockEkf::Marginal, O(k²) in their k entries; per
+  // observation on the per-observation schedule), so that LastSelectionStats() has the accuracy
+  // ratio of SPEC S1, Eq. 24.
   bool selection_diagnostics = false;
 
   bool known_association() const { return association_method == AssociationMethod::kKnown; }

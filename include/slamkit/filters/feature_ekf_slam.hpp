@@ -33,8 +33,9 @@ struct FeatureEkfSlamParams {
   // When the state's health is checked (see StateHealthParams): every update in Debug and
   // sanitizer builds, at output (CheckOutputHealth) in Release.
   StateHealthParams health;
-  // Whether each step also runs the full update on a copy, for the accuracy ratio of SPEC S1,
-  // Eq. 24 in LastSelectionStats() (see EkfSlamParams::selection_diagnostics).
+  // Whether each step also runs the full update (on the matched blocks' marginal, O(k²)), for
+  // the accuracy ratio of SPEC S1, Eq. 24 in LastSelectionStats() (see
+  // EkfSlamParams::selection_diagnostics).
   bool selection_diagnostics = false;
 };
 
@@ -95,8 +96,8 @@ class FeatureEkfSlam {
   const BlockEkf& ekf() const { return ekf_; }
   // What the selection policy did in the last Update().
   const SelectionStats& LastSelectionStats() const { return selection_stats_; }
-  // Turns FeatureEkfSlamParams::selection_diagnostics on or off from the next Update() (its full
-  // update on a copy costs O(n²) per step: a long run may take it on a sample of its steps).
+  // Turns FeatureEkfSlamParams::selection_diagnostics on or off from the next Update() (a run
+  // may take the ratio on a sample of its steps).
   void SetSelectionDiagnostics(bool on) { params_.selection_diagnostics = on; }
 
  private:

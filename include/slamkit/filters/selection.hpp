@@ -74,7 +74,7 @@ struct SelectionStats {
   // ln|P⁺| − ln|P⁻| of the whole correction.
   double selected_log_ratio = 0.0;
   // With diagnostics on: the same sum for the full sequential update of every candidate, in scan
-  // order, from the same prior (evaluated on a copy of the filter).
+  // order, from the same prior (evaluated on the marginal of the blocks they touch).
   std::optional<double> all_log_ratio;
 
   // SPEC S1, Eq. 24: the share of the full update's log-determinant reduction that the
