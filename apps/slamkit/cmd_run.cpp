@@ -3,11 +3,14 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "commands.hpp"
 #include "grid_common.hpp"
+#include "slamkit/core/angle.hpp"
+#include "slamkit/runners/isam_config.hpp"
 #include "slamkit/runners/outputs.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/report/figures.hpp"
@@ -25,8 +28,40 @@ struct RunOptions {
   double sighting_covariance_scale = 1.0;
   double gate_chi2 = AssociationParams{}.gate_chi2;
   double new_landmark_chi2 = AssociationParams{}.new_landmark_chi2;
+  std::vector<double> odometry_noise;  // srr, srt, str, stt
+  std::vector<double> sighting_noise;  // range [m], bearing [deg]
+  std::string config;
+  bool association_given = false;  // --association overrides --config
   bool no_figures = false;
 };
+
+// The runner's parameters: --config, or the options (--association over either).
+IsamRunParams ParamsOf(const RunOptions& o) {
+  IsamRunParams params;
+  if (!o.config.empty()) {
+    params = LoadIsamConfig(o.config);
+  } else {
+    params.ekf.jcbb.max_joint_tests = o.jcbb_max_joint_tests;
+    params.ekf.association.gate_chi2 = o.gate_chi2;
+    params.ekf.association.new_landmark_chi2 = o.new_landmark_chi2;
+    params.odometry_covariance_scale = o.odometry_covariance_scale;
+    params.sighting_covariance_scale = o.sighting_covariance_scale;
+    if (!o.odometry_noise.empty()) {
+      params.odometry_noise = {o.odometry_noise[0], o.odometry_noise[1], o.odometry_noise[2],
+                               o.odometry_noise[3]};
+    }
+    if (!o.sighting_noise.empty()) {
+      params.sighting_sigma_range_m = o.sighting_noise[0];
+      params.sighting_sigma_bearing_rad = DegToRad(o.sighting_noise[1]);
+    }
+  }
+  if (o.known_association) {
+    params.ekf.association_method = AssociationMethod::kKnown;
+  } else if (o.association_given || o.config.empty()) {
+    params.ekf.association_method = o.association;
+  }
+  return params;
+}
 
 const char* AssociationName(AssociationMethod m) {
   switch (m) {
@@ -40,19 +75,14 @@ const char* AssociationName(AssociationMethod m) {
 int RunIsamCommand(const RunOptions& o) {
   const IsamLog log = ReadIsamLog(o.isam);
   OutputDir output(o.out);
-  IsamRunParams params;
-  params.ekf.association_method = o.known_association ? AssociationMethod::kKnown : o.association;
-  params.ekf.jcbb.max_joint_tests = o.jcbb_max_joint_tests;
-  params.ekf.association.gate_chi2 = o.gate_chi2;
-  params.ekf.association.new_landmark_chi2 = o.new_landmark_chi2;
-  params.odometry_covariance_scale = o.odometry_covariance_scale;
-  params.sighting_covariance_scale = o.sighting_covariance_scale;
+  const IsamRunParams params = ParamsOf(o);
   const IsamRunResult result = RunEkfSlamOnIsam(log, params);
   const std::filesystem::path& dir = output.staging();
   if (!o.no_figures) {
     PathFigureData figure;
-    figure.title = fmt::format("{} ({} association)", std::filesystem::path(o.isam).filename().string(),
-                               AssociationName(params.ekf.association_method));
+    // The short name: the figure's title is one line at its font size.
+    figure.title = fmt::format("{} ({})", std::filesystem::path(o.isam).filename().string(),
+                               IsamParamsJson(params)["association"].get<std::string>());
     figure.estimate = result.estimate;
     figure.map = result.map;
     WritePathFigure(dir / "map.png", figure);
@@ -64,6 +94,10 @@ int RunIsamCommand(const RunOptions& o) {
   fmt::print("  {:<28}{:>12}\n", "landmarks mapped", result.map.landmarks.size());
   fmt::print("  {:<28}{:>12}\n", "sightings dropped", result.dropped);
   fmt::print("  {:<28}{:>12.4f}\n", "association agreement", result.association_agreement);
+  if (params.score_against_merged_reference) {
+    fmt::print("  {:<28}{:>12.4f}  ({} groups of the file's ids merged)\n", "  merged reference",
+               result.association_agreement_merged, result.reference_merges.size());
+  }
   fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("wrote {}\n", o.out);
   return 0;
@@ -79,7 +113,7 @@ void RegisterRun(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
-  cmd->add_option("--association", o->association,
+  CLI::Option* association = cmd->add_option("--association", o->association,
                   "nn (nearest neighbour), jcbb (joint compatibility, Neira & Tardos 2001) or "
                   "known (the file's landmark ids)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, AssociationMethod>{
@@ -89,27 +123,51 @@ void RegisterRun(CLI::App& app, int& exit_code) {
       ->default_str("nn");
   cmd->add_flag("--known-association", o->known_association, "the same as --association known")
       ->excludes("--association");
-  cmd->add_option("--jcbb-max-tests", o->jcbb_max_joint_tests,
-                  "jcbb: most joint-compatibility tests per scan before taking the best found")
-      ->capture_default_str()
-      ->check(NonNegativeNumber());
-  cmd->add_option("--odometry-cov-scale", o->odometry_covariance_scale,
-                  "multiply the file's odometry covariances")
-      ->capture_default_str()
-      ->check(PositiveNumber());
-  cmd->add_option("--sighting-cov-scale", o->sighting_covariance_scale,
-                  "multiply the file's sighting covariances")
-      ->capture_default_str()
-      ->check(PositiveNumber());
-  cmd->add_option("--gate-chi2", o->gate_chi2, "association gate (squared Mahalanobis)")
-      ->capture_default_str()
-      ->check(PositiveNumber());
-  cmd->add_option("--new-landmark-chi2", o->new_landmark_chi2,
-                  "distance beyond which a sighting starts a new landmark")
-      ->capture_default_str()
-      ->check(PositiveNumber());
+  std::vector<CLI::Option*> tuning;
+  tuning.push_back(
+      cmd->add_option("--jcbb-max-tests", o->jcbb_max_joint_tests,
+                      "jcbb: most joint-compatibility tests per scan before taking the best found")
+          ->capture_default_str()
+          ->check(NonNegativeNumber()));
+  tuning.push_back(cmd->add_option("--odometry-cov-scale", o->odometry_covariance_scale,
+                                   "multiply the file's odometry covariances")
+                       ->capture_default_str()
+                       ->check(PositiveNumber()));
+  tuning.push_back(cmd->add_option("--odometry-noise", o->odometry_noise,
+                                   "SRR,SRT,STR,STT: noise growing with each step's motion (m/m, "
+                                   "m/rad, rad/m, rad/rad), added to the file's")
+                       ->delimiter(',')
+                       ->expected(4)
+                       ->check(NonNegativeNumber()));
+  tuning.push_back(cmd->add_option("--sighting-cov-scale", o->sighting_covariance_scale,
+                                   "multiply the file's sighting covariances")
+                       ->capture_default_str()
+                       ->check(PositiveNumber()));
+  tuning.push_back(cmd->add_option("--sighting-noise", o->sighting_noise,
+                                   "RANGE_M,BEARING_DEG: a range-bearing sensor's noise in place "
+                                   "of the file's sighting covariances")
+                       ->delimiter(',')
+                       ->expected(2)
+                       ->check(PositiveNumber()));
+  tuning.push_back(
+      cmd->add_option("--gate-chi2", o->gate_chi2, "association gate (squared Mahalanobis)")
+          ->capture_default_str()
+          ->check(PositiveNumber()));
+  tuning.push_back(cmd->add_option("--new-landmark-chi2", o->new_landmark_chi2,
+                                   "distance beyond which a sighting starts a new landmark")
+                       ->capture_default_str()
+                       ->check(PositiveNumber()));
+  CLI::Option* config =
+      cmd->add_option("--config", o->config,
+                      "the runner's parameters from a YAML file (configs/victoria_park.yaml); "
+                      "--association overrides its association")
+          ->check(CLI::ExistingFile);
+  for (CLI::Option* option : tuning) config->excludes(option);
   cmd->add_flag("--no-figures", o->no_figures, "skip the PNG figure");
-  cmd->callback([o, &exit_code] { exit_code = RunIsamCommand(*o); });
+  cmd->callback([o, association, &exit_code] {
+    o->association_given = association->count() > 0;
+    exit_code = RunIsamCommand(*o);
+  });
 }
 
 }  // namespace slamkit::app

@@ -290,9 +290,8 @@ Eigen::Matrix3d EkfSlam::PoseCovariance() const {
   return ekf_.CovarianceBlock(kPoseBlock, kPoseBlock);
 }
 
-Eigen::Matrix2d EkfSlam::LandmarkCovariance(int landmark) const {
-  const int b = BlockOf(landmark);
-  return ekf_.CovarianceBlock(b, b);
+Eigen::Matrix2d EkfSlam::LandmarkCovariance(int a, int b) const {
+  return ekf_.CovarianceBlock(BlockOf(a), BlockOf(b));
 }
 
 LandmarkMap EkfSlam::Map() const {

@@ -1,8 +1,9 @@
 #include "slamkit/runners/isam_run.hpp"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <map>
+#include <numeric>
 #include <set>
 
 #include "slamkit/models/odometry.hpp"
@@ -36,41 +37,151 @@ double AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assig
   return sightings > 0 ? double(agree) / double(sightings) : 1.0;
 }
 
-}  // namespace
+// The covariance of a Cartesian sighting `z` (x forward, y left) whose range and bearing have
+// independent errors of σ_r and σ_b: J diag(σ_r², σ_b²) Jᵀ with J = ∂(x, y)/∂(r, b).
+Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_range_m,
+                                       double sigma_bearing_rad) {
+  const double r = z.norm();
+  const double c = r > 0.0 ? z.x() / r : 1.0;
+  const double s = r > 0.0 ? z.y() / r : 0.0;
+  Eigen::Matrix2d J_xy_rb;
+  J_xy_rb << c, -r * s, s, r * c;
+  const Eigen::Vector2d variances(sigma_range_m * sigma_range_m,
+                                  sigma_bearing_rad * sigma_bearing_rad);
+  return J_xy_rb * variances.asDiagonal() * J_xy_rb.transpose();
+}
 
-IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) {
-  const auto start = std::chrono::steady_clock::now();
-  EkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
-               std::make_unique<RelativePointModel>());
-  slam.Reset(Pose2());
-  IsamRunResult out;
+// The step's odometry covariance: the file's, scaled, plus the motion-proportional part.
+Eigen::Matrix3d StepCovariance(const IsamStep& step, const IsamRunParams& params) {
+  const Pose2 delta(step.odometry.x(), step.odometry.y(), step.odometry.z());
+  const Eigen::Vector3d sigmas = OdometryNoiseSigmas(delta, params.odometry_noise);
+  return step.odometry_covariance * params.odometry_covariance_scale +
+         Eigen::Matrix3d(sigmas.cwiseProduct(sigmas).asDiagonal());
+}
+
+// One filter run over the log, with each decision paired with the file's id of its sighting.
+struct Pass {
   std::vector<std::pair<int, LandmarkId>> assigned;
+  Trajectory estimate;
+  int sightings = 0;
+  int dropped = 0;
+};
+
+Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& params,
+             bool known_association) {
+  Pass pass;
+  slam.Reset(Pose2(), Eigen::Matrix3d::Zero());
   auto update = [&](const std::vector<PointObservation>& sightings) {
     std::vector<PointObservation> input = sightings;
     for (PointObservation& s : input) {
+      if (params.sighting_sigma_range_m > 0.0 && params.sighting_sigma_bearing_rad > 0.0) {
+        s.R = RangeBearingCovariance(s.z, params.sighting_sigma_range_m,
+                                     params.sighting_sigma_bearing_rad);
+      }
       s.R *= params.sighting_covariance_scale;
-      if (!params.ekf.known_association()) s.id = kNoLandmark;  // ids only score the result
+      if (!known_association) s.id = kNoLandmark;  // ids only score the result
     }
     const auto decisions = slam.Update(input);
     for (std::size_t i = 0; i < decisions.size(); ++i) {
-      out.dropped += decisions[i].kind == AssociationDecision::Kind::kDropped ? 1 : 0;
-      assigned.emplace_back(decisions[i].landmark, sightings[i].id);
+      pass.dropped += decisions[i].kind == AssociationDecision::Kind::kDropped ? 1 : 0;
+      pass.assigned.emplace_back(decisions[i].landmark, sightings[i].id);
     }
-    out.sightings += static_cast<int>(sightings.size());
+    pass.sightings += static_cast<int>(sightings.size());
   };
   update(log.initial_sightings);
-  out.estimate.push_back({double(log.initial_pose_index), slam.pose()});
+  pass.estimate.push_back({double(log.initial_pose_index), slam.PoseEstimate()});
   for (const IsamStep& step : log.steps) {
-    const ControlCovariance q = step.odometry_covariance * params.odometry_covariance_scale;
+    const ControlCovariance q = StepCovariance(step, params);
     slam.Predict(Control(step.odometry), 0.0, &q);
     update(step.sightings);
-    out.estimate.push_back({double(step.pose_index), slam.pose()});
+    pass.estimate.push_back({double(step.pose_index), slam.PoseEstimate()});
   }
   // Before anything is taken from the state: a run gone numerically bad gives no map of NaN.
   slam.CheckOutputHealth();
-  out.map = slam.Map();
-  out.association_agreement = AssociationAgreement(assigned, out.sightings);
+  return pass;
+}
+
+// The pairs of file ids sighted from one pose: two distinct landmarks by the file's own account.
+std::set<std::pair<LandmarkId, LandmarkId>> SightedTogether(const IsamLog& log) {
+  std::set<std::pair<LandmarkId, LandmarkId>> together;
+  auto add = [&](const std::vector<PointObservation>& sightings) {
+    for (const PointObservation& a : sightings) {
+      for (const PointObservation& b : sightings) {
+        if (a.id < b.id) together.insert({a.id, b.id});
+      }
+    }
+  };
+  add(log.initial_sightings);
+  for (const IsamStep& step : log.steps) add(step.sightings);
+  return together;
+}
+
+// Representative of `id` in a union-find forest over file ids.
+LandmarkId Root(std::map<LandmarkId, LandmarkId>& parent, LandmarkId id) {
+  while (parent.count(id) && parent[id] != id) id = parent[id] = parent[parent[id]];
+  return id;
+}
+
+}  // namespace
+
+std::vector<std::vector<LandmarkId>> IndistinguishableReferenceIds(const IsamLog& log,
+                                                                   const IsamRunParams& params) {
+  EkfSlamParams known = params.ekf;
+  known.association_method = AssociationMethod::kKnown;
+  EkfSlam slam(known, std::make_unique<OdometryModel>(), std::make_unique<RelativePointModel>());
+  RunPass(slam, log, params, true);
+  const auto together = SightedTogether(log);
+  std::map<LandmarkId, LandmarkId> parent;
+  const int n = slam.NumLandmarks();
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      const Eigen::Vector2d d = slam.LandmarkPosition(a) - slam.LandmarkPosition(b);
+      const Eigen::Matrix2d P_ab = slam.LandmarkCovariance(a, b);
+      const Eigen::Matrix2d S =
+          slam.LandmarkCovariance(a) + slam.LandmarkCovariance(b) - P_ab - P_ab.transpose();
+      if (d.dot(S.ldlt().solve(d)) > params.ekf.association.gate_chi2) continue;
+      const LandmarkId ia = slam.LandmarkSourceId(a), ib = slam.LandmarkSourceId(b);
+      if (together.count({std::min(ia, ib), std::max(ia, ib)})) continue;
+      parent.try_emplace(ia, ia);
+      parent.try_emplace(ib, ib);
+      parent[Root(parent, std::max(ia, ib))] = Root(parent, std::min(ia, ib));
+    }
+  }
+  std::map<LandmarkId, std::vector<LandmarkId>> groups;
+  for (const auto& [id, unused] : parent) groups[Root(parent, id)].push_back(id);
+  std::vector<std::vector<LandmarkId>> out;
+  for (auto& [root, ids] : groups) out.push_back(std::move(ids));
+  return out;
+}
+
+IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) {
+  EkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
+               std::make_unique<RelativePointModel>());
+  return RunFilterOnIsam(slam, log, params, params.ekf.known_association());
+}
+
+IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
+                              const IsamRunParams& params, bool known_association) {
+  const auto start = std::chrono::steady_clock::now();
+  Pass pass = RunPass(filter, log, params, known_association);
+  IsamRunResult out;
+  out.estimate = std::move(pass.estimate);
+  out.map = filter.Map();
+  out.sightings = pass.sightings;
+  out.dropped = pass.dropped;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.association_agreement = AssociationAgreement(pass.assigned, out.sightings);
+  if (params.score_against_merged_reference) {
+    out.reference_merges = IndistinguishableReferenceIds(log, params);
+    std::map<LandmarkId, LandmarkId> merged;
+    for (const auto& group : out.reference_merges) {
+      for (LandmarkId id : group) merged[id] = group.front();
+    }
+    for (auto& [ours, theirs] : pass.assigned) {
+      if (merged.count(theirs)) theirs = merged[theirs];
+    }
+    out.association_agreement_merged = AssociationAgreement(pass.assigned, out.sightings);
+  }
   return out;
 }
 

@@ -8,6 +8,7 @@
 
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/writers.hpp"
+#include "slamkit/runners/isam_config.hpp"
 #include "slamkit/models/vehicle.hpp"
 
 namespace slamkit {
@@ -140,19 +141,23 @@ void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::js
 }
 
 nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) {
-  const AssociationMethod m = params.ekf.association_method;
-  return {{"known_association", params.ekf.known_association()},
-          {"association", m == AssociationMethod::kKnown                ? "known"
-                          : m == AssociationMethod::kJointCompatibility ? "jcbb"
-                                                                        : "nn"},
-          {"poses", r.estimate.size()},
-          {"sightings", r.sightings},
-          {"dropped", r.dropped},
-          {"association_agreement", r.association_agreement},
-          {"landmarks_mapped", r.map.landmarks.size()},
-          {"odometry_covariance_scale", params.odometry_covariance_scale},
-          {"sighting_covariance_scale", params.sighting_covariance_scale},
-          {"wall_time_s", r.wall_time_s}};
+  nlohmann::json metrics = {
+      {"known_association", params.ekf.known_association()},
+      {"association", IsamParamsJson(params)["association"]},
+      {"poses", r.estimate.size()},
+      {"sightings", r.sightings},
+      {"dropped", r.dropped},
+      {"association_agreement", r.association_agreement},
+      {"landmarks_mapped", r.map.landmarks.size()},
+      {"odometry_covariance_scale", params.odometry_covariance_scale},
+      {"sighting_covariance_scale", params.sighting_covariance_scale},
+      {"wall_time_s", r.wall_time_s},
+      {"params", IsamParamsJson(params)}};
+  if (params.score_against_merged_reference) {
+    metrics["association_agreement_merged"] = r.association_agreement_merged;
+    metrics["reference_merges"] = r.reference_merges;
+  }
+  return metrics;
 }
 
 void WriteIsamOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,

@@ -118,12 +118,23 @@ void ReadSensor(const Section& root, RangeBearingParams* p, int* period_steps) {
 }
 
 void ReadEkf(const Section& root, EkfSlamParams* p) {
-  const Section s = root.Child("ekf", {"known_association", "gate_chi2", "new_landmark_chi2",
-                                       "association_margin_m", "initial_landmark_capacity"});
+  const Section s =
+      root.Child("ekf", {"known_association", "association", "gate_chi2", "new_landmark_chi2",
+                         "association_margin_m", "initial_landmark_capacity", "max_joint_tests"});
   bool known = p->known_association();
   s.Read("known_association", &known);
-  p->association_method =
-      known ? AssociationMethod::kKnown : AssociationMethod::kNearestNeighbour;
+  // The names follow AssociationMethod's order.
+  p->association_method = static_cast<AssociationMethod>(
+      ReadChoice(s, "association", {"nn", "known", "jcbb"},
+                 static_cast<int>(known ? AssociationMethod::kKnown
+                                        : AssociationMethod::kNearestNeighbour)));
+  if (s.Has("association") && s.Has("known_association") &&
+      known != (p->association_method == AssociationMethod::kKnown)) {
+    s.Fail("known_association", "contradicts `association`; give one of the two");
+  }
+  int max_joint_tests = static_cast<int>(p->jcbb.max_joint_tests);
+  s.Read("max_joint_tests", &max_joint_tests, 1);
+  p->jcbb.max_joint_tests = max_joint_tests;
   s.Read("gate_chi2", &p->association.gate_chi2, Bound::kPositive);
   s.Read("new_landmark_chi2", &p->association.new_landmark_chi2, Bound::kPositive);
   if (p->association.new_landmark_chi2 < p->association.gate_chi2) {

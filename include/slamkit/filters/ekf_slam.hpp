@@ -110,7 +110,11 @@ class EkfSlam final : public LandmarkSlamFilter {
   int NumLandmarks() const override { return static_cast<int>(source_ids_.size()); }
   int StateSize() const { return ekf_.StateSize(); }
   Eigen::Vector2d LandmarkPosition(int landmark) const { return ekf_.Mean(BlockOf(landmark)); }
-  Eigen::Matrix2d LandmarkCovariance(int landmark) const;
+  Eigen::Matrix2d LandmarkCovariance(int landmark) const {
+    return LandmarkCovariance(landmark, landmark);
+  }
+  // The cross-covariance of landmarks `a` and `b` (their joint covariance's off-diagonal block).
+  Eigen::Matrix2d LandmarkCovariance(int a, int b) const;
   // The id of the observation that created the landmark (kNoLandmark if it had none).
   LandmarkId LandmarkSourceId(int landmark) const { return source_ids_[landmark]; }
   LandmarkMap Map() const override;

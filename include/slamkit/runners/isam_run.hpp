@@ -6,6 +6,7 @@
 #include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/maps/landmark_map.hpp"
+#include "slamkit/models/odometry_sampling.hpp"
 
 namespace slamkit {
 
@@ -15,20 +16,51 @@ struct IsamRunParams {
   double odometry_covariance_scale = 1.0;
   // Multiplies every sighting covariance of the file.
   double sighting_covariance_scale = 1.0;
+  // Odometry noise that grows with each step's distance and turn (OdometryNoiseSigmas), added to
+  // the file's (scaled) covariance. A log may give every step the same covariance whatever the
+  // vehicle did, where a wheel odometry's error grows with the motion. Zero: the file's alone.
+  OdometryNoiseParams odometry_noise{0.0, 0.0, 0.0, 0.0};
+  // When both are positive, each sighting's covariance is that of a range-bearing sensor with
+  // these standard deviations (mapped to the sighting's Cartesian frame), in place of the
+  // file's: a laser's tree detector errs along and across the beam, not equally in x and y.
+  double sighting_sigma_range_m = 0.0;
+  double sighting_sigma_bearing_rad = 0.0;
+  // Also score against the file's ids with its indistinguishable ids merged
+  // (IndistinguishableReferenceIds): one more EKF pass, with the file's association.
+  bool score_against_merged_reference = true;
 };
 
 // EKF-SLAM over an iSAM-format log (relative-point sightings, odometry with its own covariance).
 struct IsamRunResult {
-  Trajectory estimate;   // one pose per log pose, t = the pose's index in the file
+  Trajectory estimate;  // one pose per log pose, t = the pose's index in the file
   LandmarkMap map;
   int sightings = 0;
   int dropped = 0;
   // Share of sightings whose landmark is the one the file names, after matching our landmarks
   // one-to-one to the file's ids (greedily, by the number of sightings each pair shares).
   double association_agreement = 0.0;
-  double wall_time_s = 0.0;
+  // The same against the file's ids with each group of `reference_merges` taken as one landmark
+  // (with score_against_merged_reference; else 0 and empty).
+  double association_agreement_merged = 0.0;
+  std::vector<std::vector<LandmarkId>> reference_merges;
+  double wall_time_s = 0.0;  // the SLAM pass alone
 };
 
+// EKF-SLAM (params.ekf) with the odometry and relative-point models.
 IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params);
+// Any point-landmark filter whose motion model takes the file's increments (dx, dy, dθ) as its
+// control and whose sensor takes the sightings as they are (x forward, y left); the file's ids
+// are given to it only with `known_association`. params.ekf is used for the merged reference only.
+IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
+                              const IsamRunParams& params, bool known_association);
+
+// The file's landmark ids that its own data cannot tell apart, in groups (each sorted, groups by
+// their first id): an EKF pass with the file's association and `params`' noise, then every pair
+// of landmarks whose difference is within the association gate (squared Mahalanobis distance
+// under their joint covariance) and that the file never sights from one pose. A program that
+// wrote the file may have given one tree two ids (lost it, then started it again): scored
+// one-to-one, a filter that maps that tree once would lose the smaller id's sightings.
+std::vector<std::vector<LandmarkId>> IndistinguishableReferenceIds(const IsamLog& log,
+                                                                   const IsamRunParams& params);
 
 }  // namespace slamkit
