@@ -163,7 +163,9 @@ TEST(WaypointController, DetourIsDrivenToThenTheRouteResumesAtItsWaypoint) {
     }
     pose = model->Move(pose, u, 0.025);
     closest_to_detour = std::min(closest_to_detour, (pose.translation() - detour).norm());
-    if (k > 40 && controller.Detour()) EXPECT_EQ(controller.CurrentWaypoint(), 1);
+    if (k > 40 && controller.Detour()) {
+      EXPECT_EQ(controller.CurrentWaypoint(), 1);
+    }
   }
   EXPECT_LE(closest_to_detour, route.switch_distance_m);
   EXPECT_EQ(waypoint_when_reached, 1);  // resumed at the waypoint it had left
