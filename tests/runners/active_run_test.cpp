@@ -68,9 +68,11 @@ double ObservationsPerLandmark(const ActiveRunResult& r) {
 }
 
 void Print(const char* name, const ActiveRunResult& r) {
+  double anees = 0.0;
+  for (double v : r.run.nees) anees += v / static_cast<double>(r.run.nees.size());
   std::cout << name << ": steps " << r.run.errors.size() << ", periods " << r.periods
             << ", position RMS " << r.run.rmse.position_m << " m, heading RMS "
-            << r.run.rmse.heading_rad << " rad, landmarks mapped " << r.run.map.landmarks.size()
+            << r.run.rmse.heading_rad << " rad, mean NEES " << anees << ", landmarks mapped " << r.run.map.landmarks.size()
             << ", association correct " << r.run.association.correct << "/"
             << r.run.association.sightings << "\n";
   for (const SectionStats& s : r.sections) {
