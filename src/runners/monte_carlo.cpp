@@ -1,103 +1,27 @@
 #include "slamkit/runners/monte_carlo.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <mutex>
-#include <span>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/core/numerical_error.hpp"
-#include "slamkit/eval/alignment.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/models/range_bearing.hpp"
+#include "slamkit/runners/landmark_run.hpp"
 
 namespace slamkit {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 // Run k's observation order is drawn from stream kObservationOrderStreams + k of the seed, far
 // from the noise streams 0, 1, ... of the runs.
 constexpr std::uint64_t kObservationOrderStreams = std::uint64_t{1} << 62;
-
-// Landmark error after the best rigid alignment of the estimated map onto the true one, pairing
-// each estimated landmark with the true landmark of the sighting that created it.
-double AlignedMapRmse(const LandmarkMap& map, const LandmarkWorld& world) {
-  std::unordered_map<LandmarkId, Eigen::Vector2d> truth;
-  for (const Landmark& l : world.landmarks) truth.emplace(l.id, l.position_m);
-  std::vector<Eigen::Vector2d> from, to;
-  for (const MappedLandmark& m : map.landmarks) {
-    const auto it = truth.find(m.source_id);
-    if (it == truth.end()) continue;
-    from.push_back(m.position_m);
-    to.push_back(it->second);
-  }
-  return AlignPoints(from, to).rmse_m;
-}
-
-AssociationOutcome OutcomeOf(AssociationDecision::Kind kind) {
-  switch (kind) {
-    case AssociationDecision::Kind::kMatched: return AssociationOutcome::kMatched;
-    case AssociationDecision::Kind::kNew: return AssociationOutcome::kNew;
-    case AssociationDecision::Kind::kDropped: break;
-  }
-  return AssociationOutcome::kDropped;
-}
-
-// The filter's decisions on one scan beside the true ids of its sightings.
-struct ScanDecisions {
-  const std::vector<LandmarkId>* true_ids;
-  std::vector<AssociationDecision> decisions;
-};
-
-// Joins the filter's decisions with the truth, in filter order: each landmark's true id is that
-// of the sighting that created it, and each sighting is scored against the true id of the
-// landmark it matched. Returns the true id of each landmark (by index; kNoLandmark where no
-// decision created it).
-std::vector<LandmarkId> JoinWithTruth(const std::vector<ScanDecisions>& scans, int num_landmarks,
-                                      AssociationScorer& scorer) {
-  std::vector<LandmarkId> landmark_truth(static_cast<std::size_t>(num_landmarks), kNoLandmark);
-  for (const ScanDecisions& scan : scans) {
-    if (scan.true_ids->size() != scan.decisions.size()) {
-      throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
-    }
-    for (std::size_t i = 0; i < scan.decisions.size(); ++i) {
-      const AssociationDecision& d = scan.decisions[i];
-      const LandmarkId true_id = (*scan.true_ids)[i];
-      const bool names_landmark = d.kind != AssociationDecision::Kind::kDropped;
-      if (names_landmark && (d.landmark < 0 || d.landmark >= num_landmarks)) {
-        throw std::logic_error("RunLandmarkFilter: a decision names landmark " +
-                               std::to_string(d.landmark) + " of a map of " +
-                               std::to_string(num_landmarks));
-      }
-      if (d.kind == AssociationDecision::Kind::kNew) landmark_truth[d.landmark] = true_id;
-      const LandmarkId matched = d.kind == AssociationDecision::Kind::kMatched
-                                     ? landmark_truth[d.landmark]
-                                     : kNoLandmark;
-      scorer.Add(true_id, OutcomeOf(d.kind), matched);
-    }
-  }
-  return landmark_truth;
-}
-
-std::vector<AssociationDecision> CheckedUpdate(LandmarkSlamFilter& filter,
-                                               std::span<const PointObservation> observations) {
-  std::vector<AssociationDecision> decisions = filter.Update(observations);
-  if (decisions.size() != observations.size()) {
-    throw std::logic_error("RunLandmarkFilter: " + std::to_string(decisions.size()) +
-                           " decisions for " + std::to_string(observations.size()) +
-                           " observations");
-  }
-  return decisions;
-}
 
 }  // namespace
 
@@ -115,44 +39,18 @@ LandmarkFilterFactory EkfSlamFactory(const ScenarioConfig& config) {
 
 RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
                             const LandmarkWorld& world, double dt_s, bool known_association) {
-  SimInputs inputs = sim.inputs;
-  if (known_association) CopyTrueIds(sim.truth, inputs);  // the only way a true id gets in
+  const SimInputs& inputs = sim.inputs;
   const Trajectory& truth = sim.truth.poses;
   if (truth.size() != inputs.steps.size() + 1 || sim.truth.ids.size() != inputs.steps.size()) {
     throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
   }
-  RunResult out;
-  std::vector<ScanDecisions> scans;
-  scans.reserve(inputs.steps.size() + 1);
-  filter.Reset(inputs.initial_pose, Eigen::Matrix3d::Zero());
-  scans.push_back({&sim.truth.initial_ids, CheckedUpdate(filter, inputs.initial_observations)});
-  out.estimate.push_back({0.0, filter.PoseEstimate()});
+  LandmarkRunRecorder recorder(filter, known_association);
+  recorder.Start(inputs.initial_pose, truth[0], inputs.initial_observations,
+                 sim.truth.initial_ids);
   for (std::size_t k = 0; k < inputs.steps.size(); ++k) {
-    const SimStep& step = inputs.steps[k];
-    const auto start = Clock::now();
-    filter.Predict(step.control, dt_s);
-    scans.push_back({&sim.truth.ids[k], CheckedUpdate(filter, step.observations)});
-    out.step_time_s.push_back(std::chrono::duration<double>(Clock::now() - start).count());
-    const Pose2 estimate = filter.PoseEstimate();
-    const Eigen::Vector3d e = PoseError(estimate, truth[k + 1].pose);
-    out.errors.push_back(e);
-    out.nees.push_back(Nees(e, filter.PoseCovariance()));
-    out.estimate.push_back({step.t_s, estimate});
+    recorder.Step(inputs.steps[k], dt_s, truth[k + 1], sim.truth.ids[k]);
   }
-  out.truth = truth;
-  filter.CheckOutputHealth();  // before the map, the one output still read from the state
-  // After the run: join the filter's outputs with the truth.
-  out.map = filter.Map();
-  AssociationScorer scorer;
-  const std::vector<LandmarkId> landmark_truth =
-      JoinWithTruth(scans, static_cast<int>(out.map.landmarks.size()), scorer);
-  for (std::size_t i = 0; i < out.map.landmarks.size(); ++i) {
-    out.map.landmarks[i].source_id = landmark_truth[i];
-  }
-  out.rmse = ComputePoseRmse(out.errors);
-  out.map_rmse_m = AlignedMapRmse(out.map, world);
-  out.association = scorer.score();
-  return out;
+  return recorder.Finish(world);
 }
 
 namespace {

@@ -145,10 +145,21 @@ void ReadEkf(const Section& root, EkfSlamParams* p) {
   s.Read("initial_landmark_capacity", &p->initial_landmark_capacity, 1);
 }
 
+void ReadPlanner(const Section& root, PlannerConfig* p) {
+  const Section s = root.Child("planner", {"kind", "trigger_periods", "k", "kmeans_max_iterations",
+                                           "max_detour_periods"});
+  p->kind = static_cast<PlannerKind>(
+      ReadChoice(s, "kind", {"route", "swslam"}, static_cast<int>(p->kind)));
+  s.Read("trigger_periods", &p->swslam.trigger_periods, 2);
+  s.Read("k", &p->swslam.kmeans.k, 1);
+  s.Read("kmeans_max_iterations", &p->swslam.kmeans.max_iterations, 1);
+  s.Read("max_detour_periods", &p->swslam.max_detour_periods, 1);
+}
+
 ScenarioConfig ReadScenario(const YAML::Node& yaml, const std::filesystem::path& path) {
   const Section root(yaml, path.string(), "",
                      {"name", "dt_s", "max_steps", "world", "vehicle", "controller", "route",
-                      "initial_pose", "sensor", "ekf"});
+                      "initial_pose", "sensor", "ekf", "planner"});
   ScenarioConfig config;
   ScenarioParams& p = config.scenario;
   root.Read("name", &p.name);
@@ -166,6 +177,7 @@ ScenarioConfig ReadScenario(const YAML::Node& yaml, const std::filesystem::path&
   p.initial_pose = Pose2(xyt);
   ReadSensor(root, &p.sensor, &p.sensor_period_steps);
   ReadEkf(root, &config.ekf);
+  ReadPlanner(root, &config.planner);
   // Checked last, so that a mistake elsewhere in a file without a route is reported as such.
   if (p.route.waypoints_m.size() < 2) {
     root.Fail("route", "required (a route of at least 2 waypoints)");

@@ -31,13 +31,24 @@ WaypointController::WaypointController(const RouteParams& route, const Controlle
 }
 
 Control WaypointController::Command(const Pose2& true_pose, double dt_s) {
-  Control u(2);
-  if (!done_) done_ = AdvanceRoute(route_, true_pose, &current_, &loop_);
+  if (detour_m_ &&
+      (*detour_m_ - true_pose.translation()).norm() <= route_.switch_distance_m) {
+    detour_m_.reset();
+  }
+  // On a detour the route waits at its current waypoint, so it resumes there.
+  if (!done_ && !detour_m_) done_ = AdvanceRoute(route_, true_pose, &current_, &loop_);
   if (done_) {
+    Control u(2);
     u << 0.0, kind_ == MotionKind::kCarLike ? steer_rad_ : 0.0;
     return u;
   }
-  const Eigen::Vector2d to_target = route_.waypoints_m[current_] - true_pose.translation();
+  return Steer(detour_m_ ? *detour_m_ : route_.waypoints_m[current_], true_pose, dt_s);
+}
+
+Control WaypointController::Steer(const Eigen::Vector2d& target_m, const Pose2& true_pose,
+                                  double dt_s) {
+  Control u(2);
+  const Eigen::Vector2d to_target = target_m - true_pose.translation();
   const double bearing_rad = std::atan2(to_target.y(), to_target.x());
   if (kind_ == MotionKind::kCarLike) {
     // The car moves along θ + G (SPEC S2, Eq. 2): steer that direction at the waypoint.

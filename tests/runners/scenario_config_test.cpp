@@ -74,6 +74,8 @@ sensor: {max_range_m: 12, min_range_m: 0.5, fov_deg: 120, sigma_range_m: 0.2,
          sigma_bearing_deg: 2, period_steps: 3}
 ekf: {known_association: true, gate_chi2: 5.99, new_landmark_chi2: 20,
       association_margin_m: 2, initial_landmark_capacity: 16}
+planner: {kind: swslam, trigger_periods: 4, k: 5, kmeans_max_iterations: 7,
+          max_detour_periods: 9}
 )";
 
 ScenarioConfig LoadEveryKey(const fs::path& dir) {
@@ -143,6 +145,35 @@ TEST_F(ScenarioConfigFile, EverySensorAndEkfKeyReachesItsField) {
   EXPECT_EQ(c.ekf.association.new_landmark_chi2, 20.0);
   EXPECT_EQ(c.ekf.association_margin_m, 2.0);
   EXPECT_EQ(c.ekf.initial_landmark_capacity, 16);
+}
+
+TEST_F(ScenarioConfigFile, EveryPlannerKeyReachesItsField) {
+  const ScenarioConfig c = LoadEveryKey(dir_);
+  EXPECT_EQ(c.planner.kind, PlannerKind::kSwslam);
+  EXPECT_EQ(c.planner.swslam.trigger_periods, 4);
+  EXPECT_EQ(c.planner.swslam.kmeans.k, 5);
+  EXPECT_EQ(c.planner.swslam.kmeans.max_iterations, 7);
+  EXPECT_EQ(c.planner.swslam.max_detour_periods, 9);
+  const ScenarioConfig route = LoadScenario(Write("route.yaml", kRoute));
+  EXPECT_EQ(route.planner.kind, PlannerKind::kRoute);
+  EXPECT_EQ(route.planner.swslam.trigger_periods, 3);
+}
+
+TEST_F(ScenarioConfigFile, BadPlannerKeysNameFileLineAndKey) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"planner: {kind: greedy}\n",
+       "bad.yaml:2: key 'planner.kind': expected one of route, swslam"},
+      {"planner:\n  trigger_periods: 1\n",
+       "bad.yaml:3: key 'planner.trigger_periods': must be >= 2"},
+      {"planner: {k: 0}\n", "bad.yaml:2: key 'planner.k': must be >= 1"},
+      {"planner: {kmeans_max_iterations: 0}\n", "bad.yaml:2: key 'planner.kmeans_max_iterations'"},
+      {"planner: {max_detour_periods: 2.5}\n",
+       "bad.yaml:2: key 'planner.max_detour_periods': expected an integer"},
+      {"planner: {clusters: 3}\n", "bad.yaml:2: unknown key 'clusters' in section 'planner'"},
+  };
+  for (const auto& [yaml, expected] : cases) {
+    EXPECT_TRUE(Contains(ErrorOf(std::string(kRoute) + yaml), expected)) << yaml;
+  }
 }
 
 TEST_F(ScenarioConfigFile, AbsentKeysKeepTheDefaults) {

@@ -113,5 +113,29 @@ TEST(ShippedConfigs, ShortIsShortWithSparseLandmarks) {
   }
 }
 
+// Seed 001 Sec. 4: a 100 m × 100 m world with three dense clusters, a 14-waypoint route, the
+// car-like vehicle of Eq. 2, and SWSLAM's trigger on 3 observation periods.
+TEST(ShippedConfigs, SwslamIsTheSeedsWorldAndRoute) {
+  const ScenarioConfig c = Load("swslam.yaml");
+  const ScenarioParams& s = c.scenario;
+  EXPECT_EQ(s.vehicle.kind, MotionKind::kCarLike);
+  EXPECT_EQ(c.planner.kind, PlannerKind::kSwslam);
+  EXPECT_EQ(c.planner.swslam.trigger_periods, 3);
+  EXPECT_FALSE(c.ekf.known_association());
+  ASSERT_EQ(s.route.waypoints_m.size(), 14u);
+  for (const Eigen::Vector2d& w : s.route.waypoints_m) {
+    EXPECT_TRUE((w.array() >= 0.0).all() && (w.array() <= 100.0).all());
+  }
+  ASSERT_EQ(s.world.clusters.size(), 4u);  // three dense, one sparse background
+  for (int i = 0; i < 3; ++i) EXPECT_LE(s.world.clusters[i].sigma_m, 5.0);
+  EXPECT_GE(s.world.clusters[3].sigma_m, 20.0);
+  const LandmarkWorld world = MakeWorld(s.world);
+  Rng rng(1), order(1);
+  const SimRun run = Simulate(s, world, rng, order);  // the route alone
+  EXPECT_LT(static_cast<int>(run.inputs.steps.size()), s.max_steps);
+  for (double d : ClosestApproach(run, s.route)) EXPECT_LE(d, s.route.switch_distance_m);
+  EXPECT_GT(SensorSteps(run), 400);
+}
+
 }  // namespace
 }  // namespace slamkit

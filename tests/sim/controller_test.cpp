@@ -141,5 +141,48 @@ TEST(WaypointController, CarLikeSteeringRateLimited) {
   EXPECT_NEAR(controller.Command(Pose2(0.0, 0.0, 0.0), dt)[1], params.max_steer_rad, 1e-12);
 }
 
+TEST(WaypointController, DetourIsDrivenToThenTheRouteResumesAtItsWaypoint) {
+  // Square of 40 m; on the way to waypoint 1 (40, 0) the car is sent to (20, 25), passing
+  // near waypoint 3 (0, 40)'s side of the square but not reaching any waypoint meanwhile.
+  const RouteParams route = Square(40.0, 1, 2.0);
+  const ControllerParams params;
+  const auto model = MakeMotionModel(VehicleParams{});  // car-like
+  WaypointController controller(route, params, MotionKind::kCarLike);
+  Pose2 pose(0.0, 0.0, 0.0);
+  const Eigen::Vector2d detour(20.0, 25.0);
+  double closest_to_detour = 1e9;
+  int waypoint_when_reached = -1;
+  for (int k = 0; k < 4000 && !controller.Done(); ++k) {
+    if (k == 40) {
+      ASSERT_EQ(controller.CurrentWaypoint(), 1);
+      controller.SetDetour(detour);
+    }
+    const Control u = controller.Command(pose, 0.025);
+    if (k > 40 && waypoint_when_reached < 0 && !controller.Detour()) {
+      waypoint_when_reached = controller.CurrentWaypoint();
+    }
+    pose = model->Move(pose, u, 0.025);
+    closest_to_detour = std::min(closest_to_detour, (pose.translation() - detour).norm());
+    if (k > 40 && controller.Detour()) {
+      EXPECT_EQ(controller.CurrentWaypoint(), 1);
+    }
+  }
+  EXPECT_LE(closest_to_detour, route.switch_distance_m);
+  EXPECT_EQ(waypoint_when_reached, 1);  // resumed at the waypoint it had left
+  EXPECT_TRUE(controller.Done());
+}
+
+TEST(WaypointController, AbandonedDetourResumesTheRoute) {
+  WaypointController controller(Square(40.0, 1, 2.0), ControllerParams{}, MotionKind::kUnicycle);
+  controller.Command(Pose2(0.0, 0.0, 0.0), 0.025);
+  controller.SetDetour(Eigen::Vector2d(0.0, -30.0));
+  const Control to_detour = controller.Command(Pose2(5.0, 0.0, 0.0), 0.025);
+  EXPECT_LT(to_detour[1], 0.0);  // turning right, toward the detour
+  controller.SetDetour(std::nullopt);
+  const Control to_route = controller.Command(Pose2(5.0, 0.0, 0.0), 0.025);
+  EXPECT_DOUBLE_EQ(to_route[1], 0.0);  // straight on to (40, 0)
+  EXPECT_EQ(controller.CurrentWaypoint(), 1);
+}
+
 }  // namespace
 }  // namespace slamkit

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,9 @@ struct ControllerParams {
 
 // Drives the true vehicle along the route: steers toward the current waypoint within the rate and
 // angle limits, and advances to the next waypoint once it is within switch distance.
+// A detour (SWSLAM's self-detected waypoint, SPEC S2) is driven to before the route goes on: the
+// route stays at its current waypoint meanwhile (waypoints passed on the way do not count), and
+// the detour ends itself once reached within switch distance.
 class WaypointController {
  public:
   WaypointController(const RouteParams& route, const ControllerParams& params, MotionKind kind);
@@ -38,7 +42,13 @@ class WaypointController {
   bool Done() const { return done_; }
   int CurrentWaypoint() const { return current_; }
 
+  // Sets (or, with nullopt, abandons) the detour; it replaces any detour not yet reached.
+  void SetDetour(const std::optional<Eigen::Vector2d>& point_m) { detour_m_ = point_m; }
+  const std::optional<Eigen::Vector2d>& Detour() const { return detour_m_; }
+
  private:
+  Control Steer(const Eigen::Vector2d& target_m, const Pose2& true_pose, double dt_s);
+
   RouteParams route_;
   ControllerParams params_;
   MotionKind kind_;
@@ -46,6 +56,7 @@ class WaypointController {
   int loop_ = 0;
   bool done_ = false;
   double steer_rad_ = 0.0;  // car-like: the present steering angle
+  std::optional<Eigen::Vector2d> detour_m_;
 };
 
 }  // namespace slamkit
