@@ -27,8 +27,6 @@ FastSlam::FastSlam(const FastSlamParams& params, std::unique_ptr<MotionModel> mo
   Reset(Pose2(), Eigen::Matrix3d::Zero());
 }
 
-FastSlam::~FastSlam() = default;
-
 // Each particle's work reads only shared inputs and writes only its own slots, and draws from its
 // own stream (ParticleStreams), so the result does not depend on the thread count.
 template <class F>

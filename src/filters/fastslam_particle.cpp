@@ -4,6 +4,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "fastslam_steps.hpp"
 #include "slamkit/core/angle.hpp"

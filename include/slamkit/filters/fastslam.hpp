@@ -97,7 +97,6 @@ class FastSlam final : public LandmarkSlamFilter {
  public:
   FastSlam(const FastSlamParams& params, std::unique_ptr<MotionModel> motion,
            std::unique_ptr<PointSensorModel> sensor);
-  ~FastSlam() override;
 
   // All particles at `pose`, or drawn from N(pose, pose_cov) when it is not zero.
   void Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov = Eigen::Matrix3d::Zero()) override;
