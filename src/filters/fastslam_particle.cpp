@@ -240,27 +240,6 @@ std::vector<Match> Associate(std::vector<Candidate>& candidates, const FastSlamP
 
 }  // namespace
 
-std::int64_t CellKey(const Eigen::Vector2d& p_m, double cell_m) {
-  const auto ix = static_cast<std::int64_t>(std::floor(p_m.x() / cell_m));
-  const auto iy = static_cast<std::int64_t>(std::floor(p_m.y() / cell_m));
-  return (ix << 32) ^ (iy & 0xffffffff);
-}
-
-void SlotsNear(const SlotGrid& grid, const Eigen::Vector2d& center, double radius_m,
-               double cell_m, std::vector<int>& out) {
-  out.clear();
-  const auto lo_x = static_cast<std::int64_t>(std::floor((center.x() - radius_m) / cell_m));
-  const auto hi_x = static_cast<std::int64_t>(std::floor((center.x() + radius_m) / cell_m));
-  const auto lo_y = static_cast<std::int64_t>(std::floor((center.y() - radius_m) / cell_m));
-  const auto hi_y = static_cast<std::int64_t>(std::floor((center.y() + radius_m) / cell_m));
-  for (std::int64_t ix = lo_x; ix <= hi_x; ++ix) {
-    for (std::int64_t iy = lo_y; iy <= hi_y; ++iy) {
-      const auto it = grid.find((ix << 32) ^ (iy & 0xffffffff));
-      if (it != grid.end()) out.insert(out.end(), it->second.begin(), it->second.end());
-    }
-  }
-}
-
 void PredictParticle(FastSlamParticle& p, const MotionModel& motion, FastSlamProposal proposal,
                      const Control& u, double dt_s, const ControlCovariance& Q, Rng& rng) {
   if (proposal == FastSlamProposal::kMotion) {

@@ -7,25 +7,15 @@
 
 #include <Eigen/Dense>
 
+#include "common/landmark_inputs.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 
 namespace slamkit {
 namespace {
 
-Control Odo(double dx, double dy, double dth) {
-  Control u(3);
-  u << dx, dy, dth;
-  return u;
-}
-
-PointObservation RangeBearingObs(double r, double b, LandmarkId id = kNoLandmark) {
-  PointObservation obs;
-  obs.z << r, b;
-  obs.R = Eigen::Vector2d(0.05 * 0.05, 0.01 * 0.01).asDiagonal();
-  obs.id = id;
-  return obs;
-}
+using testing::Odo;
+using testing::RangeBearingObs;
 
 FastSlam MakeFilter(FastSlamParams params) {
   return FastSlam(params, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>());
