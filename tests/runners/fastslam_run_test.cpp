@@ -47,13 +47,21 @@ RunResult RunFastSlam(const ScenarioParams& scenario, const LandmarkWorld& world
 
 class FastSlamRun : public ::testing::TestWithParam<FastSlamProposal> {};
 
-// Unknown association, 20 particles: both versions keep the pose far closer to the truth than
-// the odometry does, map the landmarks they saw, and a seed gives the same run on 1 or 2 threads.
-TEST_P(FastSlamRun, BeatsOdometryAndIsTheSameOnAnyThreadCount) {
+// Noisier motion than the file's, so that dead reckoning drifts (about 2.4 m RMS over the lap).
+ScenarioConfig NoisyMotion() {
   ScenarioConfig config = ShortScenario();
-  config.scenario.max_steps = 700;
+  config.scenario.vehicle.car_like.sigma_v_mps = 1.0;
+  config.scenario.vehicle.car_like.sigma_steer_rad = 0.2;
+  return config;
+}
+
+// Unknown association, 20 particles, one lap: both versions keep the pose far closer to the truth
+// than the odometry does (about 0.14 m against 2.4 m RMS), associate correctly, and a seed gives
+// the same run on 1 or 2 threads.
+TEST_P(FastSlamRun, BeatsOdometryAndIsTheSameOnAnyThreadCount) {
+  const ScenarioConfig config = NoisyMotion();
   const LandmarkWorld world = MakeWorld(config.scenario.world);
-  const SimRun sim = SimulateOnce(config.scenario, world, 3);
+  const SimRun sim = SimulateOnce(config.scenario, world, 1);
   FastSlamParams params;
   params.particles = 20;
   params.proposal = GetParam();
@@ -63,7 +71,7 @@ TEST_P(FastSlamRun, BeatsOdometryAndIsTheSameOnAnyThreadCount) {
   const RunResult two = RunFastSlam(config.scenario, world, sim, params);
 
   const double odometry = OdometryRmse(config.scenario, sim);
-  EXPECT_LT(one.rmse.position_m, 0.5 * odometry) << "odometry " << odometry;
+  EXPECT_LT(one.rmse.position_m, 0.25 * odometry) << "odometry " << odometry;
   EXPECT_GT(one.association.correct, 0.95 * one.association.matched);
   EXPECT_GT(one.map.landmarks.size(), 10u);
   EXPECT_LT(one.map_rmse_m, 0.5);
@@ -83,14 +91,13 @@ INSTANTIATE_TEST_SUITE_P(Both, FastSlamRun,
 
 // Montemerlo et al. 2003: with a sensor much more precise than the motion, 2.0 draws each pose
 // from the proposal the sighting sharpens, so a handful of particles suffice; 1.0's motion
-// samples mostly miss the narrow likelihood. With 5 particles 2.0 is the better on every seed.
+// samples mostly miss the narrow likelihood. With 5 particles 2.0's error was 0.18-0.33 of
+// 1.0's over these seeds.
 TEST(FastSlamRun, ObservationProposalBeatsMotionProposalWithFewParticles) {
-  ScenarioConfig config = ShortScenario();
+  ScenarioConfig config = NoisyMotion();
   config.scenario.max_steps = 500;
-  config.scenario.vehicle.car_like.sigma_v_mps = 0.6;
-  config.scenario.vehicle.car_like.sigma_steer_rad = 0.1;
-  config.scenario.sensor.sigma_range_m = 0.02;
-  config.scenario.sensor.sigma_bearing_rad = 0.004;
+  config.scenario.sensor.sigma_range_m = 0.005;
+  config.scenario.sensor.sigma_bearing_rad = 0.0005;
   const LandmarkWorld world = MakeWorld(config.scenario.world);
   FastSlamParams params;
   params.particles = 5;
@@ -102,7 +109,7 @@ TEST(FastSlamRun, ObservationProposalBeatsMotionProposalWithFewParticles) {
     const double v1 = RunFastSlam(config.scenario, world, sim, params).rmse.position_m;
     params.proposal = FastSlamProposal::kObservation;
     const double v2 = RunFastSlam(config.scenario, world, sim, params).rmse.position_m;
-    EXPECT_LT(v2, 0.7 * v1) << "seed " << seed << ": 2.0 " << v2 << " m, 1.0 " << v1 << " m";
+    EXPECT_LT(v2, 0.5 * v1) << "seed " << seed << ": 2.0 " << v2 << " m, 1.0 " << v1 << " m";
   }
 }
 
