@@ -83,18 +83,18 @@ std::vector<AssociationDecision> FastSlam::Update(std::span<const PointObservati
   }
   const int step = step_++;
   const fastslam_detail::ScanInputs scan{params_, *sensor_, observations, slot_grid_, slot_of_id_};
-  std::vector<ParticleUpdate> updates(static_cast<std::size_t>(particles_.size()));
+  updates_.resize(static_cast<std::size_t>(particles_.size()));
   ForEachParticle([&](int k) {
     Rng rng = streams_.ForParticle(step, k);
-    updates[k] = fastslam_detail::UpdateParticle(particles_[k], scan, rng);
+    fastslam_detail::UpdateParticle(particles_[k], scan, rng, updates_[k]);
   });
-  const std::vector<int> slot_of_observation = AllocateSlots(observations, updates);
+  const std::vector<int> slot_of_observation = AllocateSlots(observations, updates_);
   ForEachParticle([&](int k) {
-    fastslam_detail::InsertCreated(particles_[k], updates[k], slot_of_observation);
-    particles_.AddLogWeight(k, updates[k].log_weight);
+    fastslam_detail::InsertCreated(particles_[k], updates_[k], slot_of_observation);
+    particles_.AddLogWeight(k, updates_[k].log_weight);
   });
   updated_ = true;
-  std::vector<AssociationDecision> decisions = Report(updates, slot_of_observation);
+  std::vector<AssociationDecision> decisions = Report(updates_, slot_of_observation);
   // Montemerlo et al. 2003, Sec. 5 (after Doucet et al.): resample only when the weights have
   // degenerated, low-variance sampling by default (Probabilistic Robotics Table 4.4).
   resampled_ = particles_.ResampleIfNeeded(1.0, params_.resampling, streams_.filter());

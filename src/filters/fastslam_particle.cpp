@@ -256,11 +256,12 @@ void PredictParticle(FastSlamParticle& p, const MotionModel& motion, FastSlamPro
       J_x * p.pose_covariance * J_x.transpose() + J_u * Q * J_u.transpose();
 }
 
-ParticleUpdate UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& rng) {
+void UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& rng, ParticleUpdate& out) {
   const bool need_nearby = !scan.params.known_association || scan.params.negative_evidence;
   std::vector<Candidate> candidates =
       need_nearby ? GatherCandidates(p, scan) : std::vector<Candidate>{};
-  ParticleUpdate out;
+  out.decisions.clear();
+  out.log_weight = 0.0;
   PoseBelief x{p.pose, p.pose_covariance};
   const std::vector<Match> matches = Associate(candidates, p, x, scan, out.log_weight);
   p.pose = SampleProposal(x, rng);  // Montemerlo et al. 2003, Eq. 20 (1.0: Σ = 0, kept as is)
@@ -277,7 +278,6 @@ ParticleUpdate UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& 
   }
   if (scan.params.negative_evidence) ApplyNegativeEvidence(candidates, p.pose, scan);
   WriteBack(p, candidates);
-  return out;
 }
 
 void InsertCreated(FastSlamParticle& p, const ParticleUpdate& update,

@@ -37,22 +37,14 @@ struct ScanInputs {
   const std::unordered_map<LandmarkId, int>& slot_of_id;
 };
 
-// One particle's outcome of a scan. A kNew decision's landmark is -1 until the filter gives the
-// sighting a slot; `created` then holds the particle's new landmark (per observation, used only
-// for kNew decisions).
-struct ParticleUpdate {
-  std::vector<AssociationDecision> decisions;
-  std::vector<FastSlamLandmark> created;
-  double log_weight = 0.0;
-};
-
 // The particle's prediction: a motion sample (FastSLAM 1.0) or its predicted pose Gaussian (2.0).
 void PredictParticle(FastSlamParticle& p, const MotionModel& motion, FastSlamProposal proposal,
                      const Control& u, double dt_s, const ControlCovariance& Q, Rng& rng);
 
 // Association, pose sample (2.0), landmark updates, negative evidence and the weight factor of
-// one scan. Landmarks created here are left to the caller (InsertCreated) once slots exist.
-ParticleUpdate UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& rng);
+// one scan, into `out` (its buffers reused). Landmarks created here are left to the caller
+// (InsertCreated) once slots exist.
+void UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& rng, ParticleUpdate& out);
 
 // Stores the particle's new landmarks under the slots the filter gave their sightings.
 void InsertCreated(FastSlamParticle& p, const ParticleUpdate& update,

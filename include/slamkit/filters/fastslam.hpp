@@ -22,10 +22,6 @@
 
 namespace slamkit {
 
-namespace fastslam_detail {
-struct ParticleUpdate;
-}  // namespace fastslam_detail
-
 // Where a particle's new pose is drawn from.
 enum class FastSlamProposal {
   // FastSLAM 1.0 (Montemerlo et al. 2002): the motion model alone.
@@ -79,6 +75,17 @@ struct FastSlamParticle {
   // Keyed by filter-wide landmark slot (see FastSlam), shared between copies.
   LandmarkTree<FastSlamLandmark> landmarks;
 };
+
+namespace fastslam_detail {
+// One particle's outcome of a scan (the filter's per-step buffer). A kNew decision's landmark is
+// -1 until the filter gives the sighting a slot; `created` then holds the particle's new landmark
+// (per observation, used only for kNew decisions).
+struct ParticleUpdate {
+  std::vector<AssociationDecision> decisions;
+  std::vector<FastSlamLandmark> created;
+  double log_weight = 0.0;
+};
+}  // namespace fastslam_detail
 
 // FastSLAM 1.0 and 2.0 (Montemerlo et al. 2002, 2003): a particle filter over the robot's path,
 // each particle with its own 2×2 landmark EKFs in a copy-on-write tree, so that resampling copies
@@ -158,6 +165,9 @@ class FastSlam final : public LandmarkSlamFilter {
   std::vector<int> index_of_slot_;  // -1: never named
   std::vector<int> slot_of_index_;
   std::vector<MappedLandmark> last_named_;
+  // Per-particle outcomes of the scan, kept between updates so that a step allocates no large
+  // block (see ParticleSet::Keep).
+  std::vector<ParticleUpdate> updates_;
 };
 
 }  // namespace slamkit
