@@ -99,7 +99,7 @@ FastSlam OneWeightedStep(int n, double threshold, std::uint64_t seed, double q_x
 // ignoring the weights 1/N). The schemes themselves are tested in resampling_test.cpp; this checks
 // that the filter resamples the particles it weighted, with their weights, and copies them whole.
 TEST(FastSlamResampling, WeightsNormalisedAndResampledSetUnbiased) {
-  const int n = 20, seeds = 1000;
+  const int n = 20, seeds = 300;
   double sum_diff = 0.0, sum_diff2 = 0.0;
   for (int s = 0; s < seeds; ++s) {
     const FastSlam kept = OneWeightedStep(n, 0.0, s);        // never resamples
