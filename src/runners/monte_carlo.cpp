@@ -37,6 +37,14 @@ LandmarkFilterFactory EkfSlamFactory(const ScenarioConfig& config) {
   return EkfSlamFactory(config.ekf, config.scenario.vehicle, config.scenario.sensor);
 }
 
+LandmarkFilterFactory FastSlamFactory(const FastSlamParams& fastslam, const VehicleParams& vehicle,
+                                      const RangeBearingParams& sensor) {
+  return [fastslam, vehicle, sensor]() -> std::unique_ptr<LandmarkSlamFilter> {
+    return std::make_unique<FastSlam>(fastslam, MakeMotionModel(vehicle),
+                                      std::make_unique<RangeBearingModel>(sensor));
+  };
+}
+
 RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
                             const LandmarkWorld& world, double dt_s, bool known_association) {
   const SimInputs& inputs = sim.inputs;

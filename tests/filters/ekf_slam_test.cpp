@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/landmark_inputs.hpp"
 #include "common/numeric_jacobian.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
@@ -12,19 +13,8 @@
 namespace slamkit {
 namespace {
 
-Control Odo(double dx, double dy, double dth) {
-  Control u(3);
-  u << dx, dy, dth;
-  return u;
-}
-
-PointObservation RangeBearingObs(double r, double b, LandmarkId id = kNoLandmark) {
-  PointObservation obs;
-  obs.z << r, b;
-  obs.R = Eigen::Vector2d(0.05 * 0.05, 0.01 * 0.01).asDiagonal();
-  obs.id = id;
-  return obs;
-}
+using testing::Odo;
+using testing::RangeBearingObs;
 
 // A filter with a few correlated landmarks, built through the public operations only.
 EkfSlam MakeBusyFilter(int landmarks, std::uint64_t seed) {

@@ -86,18 +86,20 @@ class ParticleSet {
     return true;
   }
 
-  // Replaces the set by copies of the particles `keep` (one index per new particle).
+  // Replaces the set by copies of the particles `keep` (one index per new particle). The copies
+  // go to buffers kept from the last call: a fresh particle array at every resampling is a large
+  // allocation, which makes glibc's malloc consolidate every small block freed since the last one
+  // (for FastSLAM, thousands of tree nodes scattered over the heap: a cost that grew with the map).
   void Keep(std::span<const int> keep) {
-    std::vector<P> next;
-    next.reserve(keep.size());
-    std::vector<double> totals;
-    totals.reserve(keep.size());
+    next_.clear();
+    next_totals_.clear();
     for (int k : keep) {
-      next.push_back(particles_[k]);
-      totals.push_back(total_log_weights_[k]);
+      next_.push_back(particles_[k]);
+      next_totals_.push_back(total_log_weights_[k]);
     }
-    particles_.swap(next);
-    total_log_weights_.swap(totals);
+    particles_.swap(next_);
+    total_log_weights_.swap(next_totals_);
+    next_.clear();  // releases the particles replaced (their shared maps and paths)
     log_weights_.assign(particles_.size(), 0.0);
     sources_.assign(keep.begin(), keep.end());
   }
@@ -120,6 +122,8 @@ class ParticleSet {
   std::vector<double> log_weights_;        // since the last resampling
   std::vector<double> total_log_weights_;  // over the particle's whole history
   std::vector<int> sources_;
+  std::vector<P> next_;  // Keep()'s buffers, empty between calls
+  std::vector<double> next_totals_;
   double last_neff_ = 0.0;
   long decisions_ = 0;           // ResampleIfNeeded() calls
   long first_unnormalised_ = 0;  // the first whose weights did not normalise (1, 2, …); 0: none

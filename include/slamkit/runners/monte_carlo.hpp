@@ -10,6 +10,7 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/consistency.hpp"
 #include "slamkit/eval/errors.hpp"
+#include "slamkit/filters/fastslam.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/runners/scenario_config.hpp"
@@ -29,6 +30,10 @@ LandmarkFilterFactory EkfSlamFactory(const EkfSlamParams& ekf, const VehiclePara
                                      const RangeBearingParams& sensor);
 // The default of the command line: the scenario file's `ekf` section with its vehicle and sensor.
 LandmarkFilterFactory EkfSlamFactory(const ScenarioConfig& config);
+// FastSLAM (1.0 or 2.0, as `fastslam` says) with the same inputs as EkfSlamFactory. Every filter
+// it builds has `fastslam.seed`: Monte Carlo runs differ through their simulated noise.
+LandmarkFilterFactory FastSlamFactory(const FastSlamParams& fastslam, const VehicleParams& vehicle,
+                                      const RangeBearingParams& sensor);
 
 // One filter run on a simulated scenario, with its errors against the truth.
 struct RunResult {
