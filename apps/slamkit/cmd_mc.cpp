@@ -1,5 +1,7 @@
-// `slamkit mc` and `slamkit demo`: Monte Carlo EKF-SLAM on a simulated scenario.
+// `slamkit mc` and `slamkit demo`: Monte Carlo landmark SLAM (EKF-SLAM, FastSLAM 1.0 / 2.0) on a
+// simulated scenario.
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -22,6 +24,8 @@ struct McOptions {
   int runs = 50;
   std::uint64_t seed = 1;
   int threads = 0;
+  std::string filter = "ekf";  // ekf | fastslam1 | fastslam2
+  int particles = FastSlamParams{}.particles;
   std::string out;
   bool no_figures = false;
   bool unknown_association = false;
@@ -33,7 +37,7 @@ void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
   const AssociationScore& a = mc.association;
   fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association\n", scenario.name,
              mc.run_count, mc.t_s.size(), mc.world.landmarks.size(),
-             config.ekf.known_association() ? "known" : "nearest-neighbour");
+             AssociationName(config.ekf.association_method));
   fmt::print("  {:<28}{:>14}\n", "position RMSE [m]", fmt::format("{:.4f}", mc.rmse.position_m));
   fmt::print("  {:<28}{:>14}\n", "heading RMSE [deg]",
              fmt::format("{:.4f}", RadToDeg(mc.rmse.heading_rad)));
@@ -73,6 +77,20 @@ void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenar
   WriteConsistencyFigure(dir / "consistency.png", consistency);
 }
 
+// The filter --filter names: the scenario's EKF, or FastSLAM on the same vehicle and sensor with
+// the scenario's association (known, or each particle's maximum likelihood) and new-landmark gate.
+LandmarkFilterFactory FactoryOf(const McOptions& options, const ScenarioConfig& config) {
+  if (options.filter == "ekf") return EkfSlamFactory(config);
+  FastSlamParams fastslam;
+  fastslam.proposal =
+      options.filter == "fastslam1" ? FastSlamProposal::kMotion : FastSlamProposal::kObservation;
+  fastslam.particles = options.particles;
+  fastslam.known_association = config.ekf.known_association();
+  fastslam.new_landmark_chi2 = config.ekf.association.new_landmark_chi2;
+  fastslam.association_margin_m = config.ekf.association_margin_m;
+  return FastSlamFactory(fastslam, config.scenario.vehicle, config.scenario.sensor);
+}
+
 int RunMonteCarloCommand(const McOptions& options) {
   ScenarioConfig config = LoadScenario(options.config);
   if (options.known_association) config.ekf.association_method = AssociationMethod::kKnown;
@@ -99,10 +117,13 @@ int RunMonteCarloCommand(const McOptions& options) {
   params.on_run = [&writer](int k, const RunResult& run, const RunSummary& summary) {
     writer.Add(k, run, summary);
   };
-  const MonteCarloResult mc = RunMonteCarlo(config.scenario, EkfSlamFactory(config), params);
+  const MonteCarloResult mc = RunMonteCarlo(config.scenario, FactoryOf(options, config), params);
   // Figures first: metrics.json is written last, so its presence means the run completed.
   if (!options.no_figures) WriteFigures(dir, config.scenario, mc);
-  writer.Finish(MonteCarloMetrics(config, params, mc), mc);
+  nlohmann::json metrics = MonteCarloMetrics(config, params, mc);
+  metrics["filter"] = options.filter;
+  if (options.filter != "ekf") metrics["particles"] = options.particles;
+  writer.Finish(metrics, mc);
   output.Commit();
   PrintSummary(config, mc);
   fmt::print("wrote {}\n", options.out);
@@ -116,6 +137,14 @@ void AddCommonOptions(CLI::App& cmd, McOptions& o) {
   cmd.add_option("--threads", o.threads, "worker threads (0: all the CPUs this process may use)")
       ->check(CLI::Range(0, 1024));
   cmd.add_flag("--no-figures", o.no_figures, "skip the PNG figures");
+  cmd.add_option("--filter", o.filter,
+                 "ekf (the scenario's EKF-SLAM), fastslam1 or fastslam2 (Montemerlo et al. 2002, "
+                 "2003: per-particle landmark EKFs in copy-on-write trees)")
+      ->check(CLI::IsMember({"ekf", "fastslam1", "fastslam2"}))
+      ->capture_default_str();
+  cmd.add_option("--particles", o.particles, "FastSLAM's particle count")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd.add_flag("--known-association", o.known_association, "use the simulator's landmark ids");
   cmd.add_flag("--unknown-association", o.unknown_association,
                "nearest-neighbour association (overrides the config)");

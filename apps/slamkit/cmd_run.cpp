@@ -10,6 +10,10 @@
 #include "commands.hpp"
 #include "grid_common.hpp"
 #include "slamkit/core/angle.hpp"
+#include "slamkit/core/cpu.hpp"
+#include "slamkit/filters/fastslam.hpp"
+#include "slamkit/models/odometry.hpp"
+#include "slamkit/models/relative_point.hpp"
 #include "slamkit/runners/isam_config.hpp"
 #include "slamkit/runners/outputs.hpp"
 #include "slamkit/io/isam_reader.hpp"
@@ -31,6 +35,9 @@ struct RunOptions {
   std::vector<double> odometry_noise;  // srr, srt, str, stt
   std::vector<double> sighting_noise;  // range [m], bearing [deg]
   std::string config;
+  std::string filter = "ekf";  // ekf | fastslam1 | fastslam2
+  int particles = FastSlamParams{}.particles;
+  int threads = 0;
   bool association_given = false;  // --association overrides --config
   bool no_figures = false;
 };
@@ -63,20 +70,32 @@ IsamRunParams ParamsOf(const RunOptions& o) {
   return params;
 }
 
-const char* AssociationName(AssociationMethod m) {
-  switch (m) {
-    case AssociationMethod::kKnown: return "known";
-    case AssociationMethod::kJointCompatibility: return "joint-compatibility";
-    case AssociationMethod::kNearestNeighbour: break;
-  }
-  return "nearest-neighbour";
+// EKF-SLAM, or FastSLAM with the same odometry and sighting models and the same noise, its
+// association the EKF's known or per-particle maximum likelihood and its new-landmark gate.
+IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunParams& params) {
+  if (o.filter == "ekf") return RunEkfSlamOnIsam(log, params);
+  FastSlamParams fastslam;
+  fastslam.proposal =
+      o.filter == "fastslam1" ? FastSlamProposal::kMotion : FastSlamProposal::kObservation;
+  fastslam.particles = o.particles;
+  fastslam.threads = o.threads > 0 ? o.threads : UsableCpuCount();
+  fastslam.known_association = params.ekf.known_association();
+  fastslam.new_landmark_chi2 = params.ekf.association.new_landmark_chi2;
+  FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
+                  std::make_unique<RelativePointModel>());
+  return RunFilterOnIsam(filter, log, params, fastslam.known_association);
 }
 
 int RunIsamCommand(const RunOptions& o) {
+  const IsamRunParams params = ParamsOf(o);
+  if (o.filter != "ekf" &&
+      params.ekf.association_method == AssociationMethod::kJointCompatibility) {
+    throw CLI::ValidationError("--filter", "jcbb is the EKF's association: FastSLAM associates "
+                               "each particle by maximum likelihood (--association nn) or known");
+  }
   const IsamLog log = ReadIsamLog(o.isam);
   OutputDir output(o.out);
-  const IsamRunParams params = ParamsOf(o);
-  const IsamRunResult result = RunEkfSlamOnIsam(log, params);
+  const IsamRunResult result = RunIsam(o, log, params);
   const std::filesystem::path& dir = output.staging();
   if (!o.no_figures) {
     PathFigureData figure;
@@ -87,7 +106,10 @@ int RunIsamCommand(const RunOptions& o) {
     figure.map = result.map;
     WritePathFigure(dir / "map.png", figure);
   }
-  WriteIsamOutputs(dir, IsamMetrics(result, params), result);  // metrics.json last
+  nlohmann::json metrics = IsamMetrics(result, params);
+  metrics["filter"] = o.filter;
+  if (o.filter != "ekf") metrics["particles"] = o.particles;
+  WriteIsamOutputs(dir, metrics, result);  // metrics.json last
   output.Commit();
   fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
              result.sightings, AssociationName(params.ekf.association_method));
@@ -107,7 +129,8 @@ int RunIsamCommand(const RunOptions& o) {
 
 void RegisterRun(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "EKF-SLAM over a real data set");
+  CLI::App* cmd =
+      app.add_subcommand("run", "EKF-SLAM or FastSLAM over a real data set (iSAM format)");
   cmd->add_option("--isam", o->isam,
                   "iSAM-format log (ODOMETRY/LANDMARK lines), e.g. Victoria Park")
       ->required()
@@ -157,6 +180,16 @@ void RegisterRun(CLI::App& app, int& exit_code) {
                                    "distance beyond which a sighting starts a new landmark")
                        ->capture_default_str()
                        ->check(PositiveNumber()));
+  cmd->add_option("--filter", o->filter,
+                  "ekf, fastslam1 or fastslam2 (with --association nn: per-particle maximum "
+                  "likelihood)")
+      ->check(CLI::IsMember({"ekf", "fastslam1", "fastslam2"}))
+      ->capture_default_str();
+  cmd->add_option("--particles", o->particles, "FastSLAM's particle count")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "FastSLAM's threads (0: all usable CPUs)")
+      ->check(CLI::Range(0, 1024));
   CLI::Option* config =
       cmd->add_option("--config", o->config,
                       "the runner's parameters from a YAML file (configs/victoria_park.yaml); "

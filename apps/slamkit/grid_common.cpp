@@ -75,6 +75,15 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text) {
   return seeds;
 }
 
+const char* AssociationName(AssociationMethod m) {
+  switch (m) {
+    case AssociationMethod::kKnown: return "known";
+    case AssociationMethod::kJointCompatibility: return "joint-compatibility";
+    case AssociationMethod::kNearestNeighbour: break;
+  }
+  return "nearest-neighbour";
+}
+
 CLI::Validator PositiveNumber() {
   return NumberCheck("> 0", [](double v) { return v > 0.0; });
 }

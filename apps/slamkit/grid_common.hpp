@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/runners/grid_run.hpp"
 #include "slamkit/filters/rbpf_grid_slam.hpp"
 
@@ -16,6 +17,9 @@ namespace slamkit::app {
 
 // CLI11 checks for a number > 0 and >= 0 whose message says so ("must be > 0, got 0"), where
 // CLI::PositiveNumber's says "not in range 0.000000 to 1797693134862315708...".
+// "known", "joint-compatibility" or "nearest-neighbour", for summaries.
+const char* AssociationName(AssociationMethod m);
+
 CLI::Validator PositiveNumber();
 CLI::Validator NonNegativeNumber();
 // A seed: digits only, 0 to 2^64 - 1 (CLI11 would read "-1" as 2^64 - 1).

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "fastslam_steps.hpp"
@@ -20,6 +21,14 @@ std::int64_t CellKey(const Eigen::Vector2d& p_m, double cell_m) {
 void SlotsNear(const SlotGrid& grid, const Eigen::Vector2d& center, double radius_m,
                double cell_m, std::vector<int>& out) {
   out.clear();
+  // A square wider than the grid has cells (an unbounded sensor's infinite radius included) is
+  // cheaper, and only well defined, as a pass over every cell.
+  const double cells_across = 2.0 * radius_m / cell_m + 1.0;
+  if (!(cells_across * cells_across < double(grid.size()))) {
+    for (const auto& [key, slots] : grid) out.insert(out.end(), slots.begin(), slots.end());
+    std::sort(out.begin(), out.end());  // the order of the cell scan does not matter; fix one
+    return;
+  }
   const std::int64_t hi_x = CellIndex(center.x() + radius_m, cell_m);
   const std::int64_t hi_y = CellIndex(center.y() + radius_m, cell_m);
   for (std::int64_t ix = CellIndex(center.x() - radius_m, cell_m); ix <= hi_x; ++ix) {

@@ -148,6 +148,31 @@ TEST(Cli, OutputsAreIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(m1["per_run"].size(), 4u);
 }
 
+// Issue 11: `mc --filter` runs FastSLAM on the scenario through the same harness and records it;
+// `run --filter` refuses JCBB, which is the EKF's association, before reading anything.
+TEST(Cli, TheLandmarkFilterIsChosenByName) {
+  const fs::path dir = FreshDir("mc_filters");
+  nlohmann::json m[2];
+  const char* filters[] = {"ekf", "fastslam2"};
+  for (int i = 0; i < 2; ++i) {
+    const auto r = RunCli("mc --config " + kShort + " --runs 2 --no-figures --particles 10 " +
+                          "--filter " + filters[i] + " --out " + (dir / filters[i]).string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    m[i] = nlohmann::json::parse(ReadText(dir / filters[i] / "metrics.json"));
+    EXPECT_EQ(m[i]["filter"], filters[i]);
+  }
+  EXPECT_FALSE(m[0].contains("particles"));
+  EXPECT_EQ(m[1]["particles"], 10);
+  EXPECT_NE(m[0]["position_rmse_m"], m[1]["position_rmse_m"]);
+  const auto bad = RunCli("mc --config " + kShort + " --filter ukf --out " + (dir / "bad").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  const auto jcbb = RunCli("run --isam " + kShort + " --filter fastslam2 --association jcbb " +
+                           "--out " + (dir / "isam").string());
+  EXPECT_EQ(jcbb.exit_code, 2);
+  EXPECT_NE(jcbb.output.find("--filter"), std::string::npos) << jcbb.output;
+  EXPECT_FALSE(fs::exists(dir / "isam"));
+}
+
 // Issue 8 item 2: a closed or full stderr must not abort the run (the progress printer and the
 // error handler write without throwing).
 TEST(Cli, ClosedOrFullStderrDoesNotAbort) {

@@ -10,6 +10,7 @@
 #include "common/landmark_inputs.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
+#include "slamkit/models/relative_point.hpp"
 
 namespace slamkit {
 namespace {
@@ -191,6 +192,29 @@ TEST(FastSlamAssociation, MaximumLikelihoodMatchesAndCreates) {
   EXPECT_EQ(d1[1].kind, AssociationDecision::Kind::kNew);
   EXPECT_EQ(slam.NumLandmarks(), 3);
   EXPECT_NO_THROW(slam.CheckOutputHealth());
+}
+
+// A sensor without a range limit (the relative-point model of an iSAM log) makes the search
+// radius infinite: every landmark is a candidate, and a re-sighting still matches.
+TEST(FastSlamAssociation, AnUnboundedSensorStillFindsItsLandmarks) {
+  FastSlamParams params;
+  params.particles = 10;
+  FastSlam slam(params, std::make_unique<OdometryModel>(), std::make_unique<RelativePointModel>());
+  slam.Reset(Pose2());
+  PointObservation near, far;
+  near.z << 5.0, 1.0;
+  far.z << 40.0, -30.0;
+  near.R = far.R = 0.01 * Eigen::Matrix2d::Identity();
+  const std::vector<PointObservation> first = {near, far};
+  const std::vector<AssociationDecision> d0 = slam.Update(first);
+  const std::vector<PointObservation> again = {far, near};
+  const std::vector<AssociationDecision> d1 = slam.Update(again);
+  ASSERT_EQ(d1.size(), 2u);
+  EXPECT_EQ(d1[0].kind, AssociationDecision::Kind::kMatched);
+  EXPECT_EQ(d1[0].landmark, d0[1].landmark);
+  EXPECT_EQ(d1[1].kind, AssociationDecision::Kind::kMatched);
+  EXPECT_EQ(d1[1].landmark, d0[0].landmark);
+  EXPECT_EQ(slam.NumLandmarks(), 2);
 }
 
 // Negative evidence: a landmark in view that is never seen again is removed (and kept without it).
