@@ -68,9 +68,14 @@ void SwslamPlanner::DetectArea(int period, const LandmarkSlamFilter& filter,
   RouteSection section;
   section.first_period = period;
   section.route_waypoint = progress.route_waypoint;
+  const std::optional<Eigen::Vector2d> waypoint = ChooseWaypoint(filter);
+  if (!waypoint) {
+    trigger_.Clear();
+    return;
+  }
   if (params_.detour) {
-    section.detour_m = ChooseWaypoint(filter);
-    centres_m_.push_back(*section.detour_m);
+    section.detour_m = waypoint;
+    centres_m_.push_back(*waypoint);
   }
   sections_.push_back(section);
   state_ = params_.detour ? State::kDetour : State::kCooldown;
@@ -78,7 +83,7 @@ void SwslamPlanner::DetectArea(int period, const LandmarkSlamFilter& filter,
 
 // Seed 001 Sec. 3.1, Steps 1-5: K-means on the filter's estimates of the landmarks seen in the
 // triggering periods; the centre of the cluster with the most landmarks is the next waypoint.
-Eigen::Vector2d SwslamPlanner::ChooseWaypoint(const LandmarkSlamFilter& filter) {
+std::optional<Eigen::Vector2d> SwslamPlanner::ChooseWaypoint(const LandmarkSlamFilter& filter) {
   const LandmarkMap map = filter.Map();
   std::vector<Eigen::Vector2d> points;
   for (int i : trigger_.AreaLandmarks()) {
@@ -86,7 +91,14 @@ Eigen::Vector2d SwslamPlanner::ChooseWaypoint(const LandmarkSlamFilter& filter) 
   }
   // The trigger fired on rising counts, so the last period named at least one landmark.
   const KMeansResult clusters = KMeans(points, params_.kmeans, rng_);
-  return clusters.centres_m[LargestCluster(clusters)];
+  const int largest = LargestCluster(clusters);
+  const Eigen::Vector2d centre = clusters.centres_m[largest];
+  if (clusters.sizes[largest] < params_.min_cluster_landmarks) return std::nullopt;
+  for (const Eigen::Vector2d& earlier : considered_m_) {
+    if ((earlier - centre).norm() < params_.revisit_radius_m) return std::nullopt;
+  }
+  considered_m_.push_back(centre);
+  return centre;
 }
 
 void SwslamPlanner::FollowDetour(int period, const RouteProgress& progress) {

@@ -147,13 +147,16 @@ void ReadEkf(const Section& root, EkfSlamParams* p) {
 
 void ReadPlanner(const Section& root, PlannerConfig* p) {
   const Section s = root.Child("planner", {"kind", "trigger_periods", "k", "kmeans_max_iterations",
-                                           "max_detour_periods"});
+                                           "max_detour_periods", "min_cluster_landmarks",
+                                           "revisit_radius_m"});
   p->kind = static_cast<PlannerKind>(
       ReadChoice(s, "kind", {"route", "swslam"}, static_cast<int>(p->kind)));
   s.Read("trigger_periods", &p->swslam.trigger_periods, 2);
   s.Read("k", &p->swslam.kmeans.k, 1);
   s.Read("kmeans_max_iterations", &p->swslam.kmeans.max_iterations, 1);
   s.Read("max_detour_periods", &p->swslam.max_detour_periods, 1);
+  s.Read("min_cluster_landmarks", &p->swslam.min_cluster_landmarks, 1);
+  s.Read("revisit_radius_m", &p->swslam.revisit_radius_m, Bound::kNonNegative);
 }
 
 ScenarioConfig ReadScenario(const YAML::Node& yaml, const std::filesystem::path& path) {

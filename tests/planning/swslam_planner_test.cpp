@@ -143,6 +143,37 @@ TEST(SwslamPlanner, AbandonsADetourNotReachedInTime) {
   EXPECT_EQ(planner.Sections().size(), 1u);
 }
 
+// A sparse area (largest cluster under min_cluster_landmarks) opens no section; a dense area is
+// taken once, and rising counts around its centre later are not taken again.
+TEST(SwslamPlanner, SkipsSparseAreasAndAreasAlreadyVisited) {
+  const MapOnlyFilter filter(TestMap());
+  Rng rng(5);
+  SwslamPlannerParams params;
+  params.min_cluster_landmarks = 5;
+  params.revisit_radius_m = 10.0;
+  SwslamPlanner planner(params, rng);
+  // Landmarks 6-9 are far apart: their largest cluster holds 2.
+  planner.OnPeriod(Naming(6, 1), filter, {1, false});
+  planner.OnPeriod(Naming(6, 2), filter, {1, false});
+  EXPECT_FALSE(planner.OnPeriod(Naming(6, 4), filter, {1, false}));
+  EXPECT_TRUE(planner.Sections().empty());
+  // Landmarks 0-7: the group 0-5 is the largest cluster (6 landmarks): a detour; reached, then
+  // waypoint 1 reached.
+  planner.OnPeriod(Naming(0, 1), filter, {1, false});
+  planner.OnPeriod(Naming(0, 3), filter, {1, false});
+  ASSERT_TRUE(planner.OnPeriod(Naming(0, 8), filter, {1, false}));
+  planner.OnPeriod(Naming(0, 8), filter, {1, false});
+  planner.OnPeriod(Naming(0, 1), filter, {2, false});
+  ASSERT_EQ(planner.Sections().size(), 1u);
+  EXPECT_NE(planner.Sections()[0].end_period, -1);
+  // The same group rising again: within 10 m of the first centre, so no second section.
+  planner.OnPeriod(Naming(0, 2), filter, {2, false});
+  planner.OnPeriod(Naming(0, 4), filter, {2, false});
+  EXPECT_FALSE(planner.OnPeriod(Naming(0, 8), filter, {2, false}));
+  EXPECT_EQ(planner.Sections().size(), 1u);
+  EXPECT_EQ(planner.ChosenCentres().size(), 1u);
+}
+
 TEST(SwslamPlanner, WithoutDetoursOnlyDelimitsTheSections) {
   const MapOnlyFilter filter(TestMap());
   Rng rng(5);

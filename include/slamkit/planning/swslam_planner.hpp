@@ -28,6 +28,14 @@ struct SwslamPlannerParams {
   // A detour not reached within this many observation periods is abandoned: a car-like vehicle
   // sent to a point inside its turning circle can circle it for ever. ≥ 1.
   int max_detour_periods = 60;
+  // An area is of interest only if its largest cluster holds at least this many landmarks, and
+  // only if that cluster's centre is farther than `revisit_radius_m` from every earlier detour:
+  // the counts also rise at the edge of a sparse background or when the route passes a cluster
+  // it has already mapped, and the seed's areas of interest are the dense clusters, each visited
+  // once. Otherwise no section opens and the trigger starts a fresh window. The defaults keep
+  // every detection (1, 0).
+  int min_cluster_landmarks = 1;
+  double revisit_radius_m = 0.0;
 };
 
 // The area-of-interest test of SPEC S2 (seed 001 Sec. 3.2, Step 3). What counts in a period is
@@ -100,7 +108,8 @@ class SwslamPlanner {
   enum class State { kWatching, kDetour, kCooldown };
 
   void DetectArea(int period, const LandmarkSlamFilter& filter, const RouteProgress& progress);
-  Eigen::Vector2d ChooseWaypoint(const LandmarkSlamFilter& filter);
+  // The largest cluster's centre, or nullopt when the area is not of interest (see params).
+  std::optional<Eigen::Vector2d> ChooseWaypoint(const LandmarkSlamFilter& filter);
   void FollowDetour(int period, const RouteProgress& progress);
   void EndSectionIfReached(int period, const RouteProgress& progress);
 
@@ -111,6 +120,7 @@ class SwslamPlanner {
   int periods_ = 0;
   std::vector<RouteSection> sections_;
   std::vector<Eigen::Vector2d> centres_m_;
+  std::vector<Eigen::Vector2d> considered_m_;  // every accepted area's centre, detour or not
 };
 
 // The distinct landmarks a scan's decisions name (matched or new), ascending.
