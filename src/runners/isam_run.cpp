@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
 
 #include "slamkit/models/odometry.hpp"
+#include "slamkit/models/range_bearing.hpp"
 #include "slamkit/models/relative_point.hpp"
 
 namespace slamkit {
@@ -38,14 +40,12 @@ double AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assig
 }
 
 // The covariance of a Cartesian sighting `z` (x forward, y left) whose range and bearing have
-// independent errors of σ_r and σ_b: J diag(σ_r², σ_b²) Jᵀ with J = ∂(x, y)/∂(r, b).
+// independent errors of σ_r and σ_b: J diag(σ_r², σ_b²) Jᵀ, J = ∂(x, y)/∂(r, b) from the
+// range-bearing model's inverse seen from the origin.
 Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_range_m,
                                        double sigma_bearing_rad) {
-  const double r = z.norm();
-  const double c = r > 0.0 ? z.x() / r : 1.0;
-  const double s = r > 0.0 ? z.y() / r : 0.0;
   Eigen::Matrix2d J_xy_rb;
-  J_xy_rb << c, -r * s, s, r * c;
+  InvertRangeBearing(Pose2(), {z.norm(), std::atan2(z.y(), z.x())}, nullptr, &J_xy_rb);
   const Eigen::Vector2d variances(sigma_range_m * sigma_range_m,
                                   sigma_bearing_rad * sigma_bearing_rad);
   return J_xy_rb * variances.asDiagonal() * J_xy_rb.transpose();
