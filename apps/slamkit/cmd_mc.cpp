@@ -44,6 +44,10 @@ void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
   fmt::print("  {:<28}{:>14}   95% band [{:.3f}, {:.3f}], {:.0f}% of steps inside\n", "ANEES",
              fmt::format("{:.3f}", mc.anees_mean), mc.band.lo, mc.band.hi,
              100.0 * mc.anees_fraction_in_band);
+  if (mc.anees_infinite_steps > 0) {
+    fmt::print("  {:<28}{:>14}   (the ANEES above leaves them out)\n", "steps with infinite NEES",
+               mc.anees_infinite_steps);
+  }
   fmt::print("  {:<28}{:>14}\n", "landmarks mapped (mean)",
              fmt::format("{:.1f}", mc.landmarks_mapped_mean));
   if (!config.ekf.known_association()) {

@@ -2,13 +2,36 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 namespace slamkit {
+namespace {
+// An eigenvalue below this share of the largest is a direction the covariance claims to know
+// exactly (rounding leaves ~1e-16 of the scale there).
+constexpr double kNeesRelativeFloor = 1e-14;
+// An error this small along such a direction is no error (a filter started at the true pose).
+constexpr double kNeesExactError = 1e-12;
+}  // namespace
 
 double Nees(const Eigen::Vector3d& error, const Eigen::Matrix3d& covariance) {
-  return error.dot(covariance.ldlt().solve(error));
+  // LDLT would also "solve" a singular or indefinite C and return a meaningless, even negative,
+  // figure. The eigenbasis separates the directions C has from those it claims to know exactly.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(covariance);
+  if (eigen.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d lambda = eigen.eigenvalues();
+  const Eigen::Vector3d along = eigen.eigenvectors().transpose() * error;
+  const double floor = kNeesRelativeFloor * std::max(lambda.cwiseAbs().maxCoeff(), 0.0);
+  double nees = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    if (lambda[i] > floor && lambda[i] > 0.0) {
+      nees += along[i] * along[i] / lambda[i];
+    } else if (std::abs(along[i]) > kNeesExactError) {
+      return std::numeric_limits<double>::infinity();
+    }
+  }
+  return nees;
 }
 
 PoseRmse ComputePoseRmse(std::span<const Eigen::Vector3d> errors) {

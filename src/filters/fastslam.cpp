@@ -48,6 +48,7 @@ void FastSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   step_ = 0;
   resampled_ = false;
   updated_ = false;
+  before_resampling_.reset();
   slot_source_ids_.clear();
   slot_of_id_.clear();
   slot_grid_.clear();
@@ -69,6 +70,7 @@ void FastSlam::Predict(const Control& u, double dt_s, const ControlCovariance* c
   }
   const ControlCovariance Q = control_noise ? *control_noise : motion_->Noise(u, dt_s);
   const int step = step_++;
+  before_resampling_.reset();
   ForEachParticle([&](int k) {
     Rng rng = streams_.ForParticle(step, k);
     fastslam_detail::PredictParticle(particles_[k], *motion_, params_.proposal, u, dt_s, Q, rng);
@@ -97,7 +99,10 @@ std::vector<AssociationDecision> FastSlam::Update(std::span<const PointObservati
   std::vector<AssociationDecision> decisions = Report(updates_, slot_of_observation);
   // Montemerlo et al. 2003, Sec. 5 (after Doucet et al.): resample only when the weights have
   // degenerated, low-variance sampling by default (Probabilistic Robotics Table 4.4).
+  const Pose2 mean = WeightedMean();
+  before_resampling_.emplace(mean, WeightedSpread(mean));
   resampled_ = particles_.ResampleIfNeeded(1.0, params_.resampling, streams_.filter());
+  if (!resampled_) before_resampling_.reset();
   return decisions;
 }
 
@@ -180,6 +185,14 @@ void FastSlam::AddLandmarks(const LandmarkMap& map) {
 }
 
 Pose2 FastSlam::PoseEstimate() const {
+  return before_resampling_ ? before_resampling_->first : WeightedMean();
+}
+
+Eigen::Matrix3d FastSlam::PoseCovariance() const {
+  return before_resampling_ ? before_resampling_->second : WeightedSpread(WeightedMean());
+}
+
+Pose2 FastSlam::WeightedMean() const {
   const std::vector<double> w = particles_.Weights();
   double x = 0.0, y = 0.0, s = 0.0, c = 0.0;
   for (int k = 0; k < particles_.size(); ++k) {
@@ -192,9 +205,8 @@ Pose2 FastSlam::PoseEstimate() const {
   return Pose2(x, y, std::atan2(s, c));  // the heading's mean direction on the circle
 }
 
-Eigen::Matrix3d FastSlam::PoseCovariance() const {
+Eigen::Matrix3d FastSlam::WeightedSpread(const Pose2& mean) const {
   const std::vector<double> w = particles_.Weights();
-  const Pose2 mean = PoseEstimate();
   Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
   for (int k = 0; k < particles_.size(); ++k) {
     const Eigen::Vector3d d = PoseError(particles_[k].pose, mean);

@@ -109,9 +109,15 @@ class Aggregator {
     for (std::size_t k = 0; k < steps_; ++k) {
       mc_.position_rmse_m[k] = std::sqrt(mc_.position_rmse_m[k]);
       mc_.heading_rmse_rad[k] = std::sqrt(mc_.heading_rmse_rad[k]);
-      mc_.anees_mean += mc_.anees[k] / static_cast<double>(steps_);
+      if (std::isfinite(mc_.anees[k])) {
+        mc_.anees_mean += mc_.anees[k];
+      } else {
+        ++mc_.anees_infinite_steps;
+      }
       inside += mc_.band.Contains(mc_.anees[k]) ? 1 : 0;
     }
+    const std::size_t finite = steps_ - static_cast<std::size_t>(mc_.anees_infinite_steps);
+    mc_.anees_mean = finite > 0 ? mc_.anees_mean / static_cast<double>(finite) : 0.0;
     mc_.anees_fraction_in_band = steps_ > 0 ? double(inside) / double(steps_) : 0.0;
     mc_.rmse = {std::sqrt(pos_sq_ / runs_), std::sqrt(head_sq_ / runs_)};
     mc_.landmarks_mapped_mean = mapped_ / runs_;
@@ -129,7 +135,15 @@ class Aggregator {
 
 RunSummary SummaryOf(const RunResult& r) {
   RunSummary s;
-  for (double v : r.nees) s.anees += v / static_cast<double>(r.nees.size());
+  std::size_t finite = 0;
+  for (double v : r.nees) {
+    if (std::isfinite(v)) {
+      s.anees += v;
+      ++finite;
+    }
+  }
+  s.anees = finite > 0 ? s.anees / static_cast<double>(finite) : 0.0;
+  s.nees_infinite_steps = static_cast<int>(r.nees.size() - finite);
   double time_sum = 0.0;
   for (double t : r.step_time_s) {
     time_sum += t;

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
+#include <cmath>
 #include <vector>
 
 namespace slamkit {
@@ -10,6 +13,32 @@ namespace {
 TEST(Nees, IsMahalanobisOfError) {
   Eigen::Matrix3d C = Eigen::Vector3d(4.0, 1.0, 0.25).asDiagonal();
   EXPECT_NEAR(Nees({2.0, 1.0, 0.5}, C), 1.0 + 1.0 + 1.0, 1e-12);
+}
+
+TEST(Nees, MatchesTheInverseOnACorrelatedCovariance) {
+  Eigen::Matrix3d A;
+  A << 1.0, 0.3, -0.2, 0.0, 0.5, 0.1, 0.0, 0.0, 0.2;
+  const Eigen::Matrix3d C = A * A.transpose();
+  const Eigen::Vector3d e(0.3, -0.7, 0.05);
+  EXPECT_NEAR(Nees(e, C), e.dot(C.inverse() * e), 1e-9);
+}
+
+// A covariance that is singular (particles collapsed onto a line) or indefinite (rounding) has no
+// NEES; LDLT used to return a finite, even negative, number for both.
+TEST(Nees, IsInfiniteWithoutAPositiveDefiniteCovariance) {
+  const Eigen::Matrix3d singular = Eigen::Vector3d(1.0, 1.0, 0.0).asDiagonal();
+  EXPECT_TRUE(std::isinf(Nees({0.1, 0.1, 0.01}, singular)));
+  Eigen::Matrix3d indefinite = Eigen::Matrix3d::Identity();
+  indefinite(2, 2) = -1e-12;
+  const double nees = Nees({0.1, 0.1, 0.01}, indefinite);
+  EXPECT_TRUE(std::isinf(nees) && nees > 0.0);
+}
+
+// No error where the covariance claims certainty is no inconsistency: the other directions count.
+TEST(Nees, IgnoresAnExactDirectionWithoutError) {
+  EXPECT_EQ(Nees(Eigen::Vector3d::Zero(), Eigen::Matrix3d::Zero()), 0.0);
+  const Eigen::Matrix3d singular = Eigen::Vector3d(4.0, 1.0, 0.0).asDiagonal();
+  EXPECT_NEAR(Nees({2.0, 1.0, 0.0}, singular), 2.0, 1e-12);
 }
 
 TEST(PoseRmse, SeparatesPositionAndHeading) {

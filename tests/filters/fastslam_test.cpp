@@ -139,6 +139,22 @@ TEST(FastSlamResampling, ResamplesOnlyBelowTheThreshold) {
   EXPECT_LT(resampled, 50);
 }
 
+// After a scan that resampled, the pose estimate and covariance are those of the weighted set
+// before resampling (the copies of a few ancestors would understate the spread), until the next
+// prediction moves the resampled set.
+TEST(FastSlamResampling, EstimateIsTheWeightedSetsBeforeResampling) {
+  for (std::uint64_t s = 0; s < 5; ++s) {
+    const FastSlam kept = OneWeightedStep(10, 0.0, s, 0.003);
+    FastSlam resampled = OneWeightedStep(10, 2.0, s, 0.003);
+    ASSERT_TRUE(resampled.last_update_resampled());
+    EXPECT_TRUE(resampled.PoseEstimate().vector().isApprox(kept.PoseEstimate().vector(), 1e-12));
+    EXPECT_TRUE(resampled.PoseCovariance().isApprox(kept.PoseCovariance(), 1e-12));
+    const ControlCovariance Q = Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal();
+    resampled.Predict(Odo(0.0, 0.0, 0.0), 0.1, &Q);
+    EXPECT_FALSE(resampled.PoseCovariance().isApprox(kept.PoseCovariance(), 1e-6));
+  }
+}
+
 // Resampling copies particles without copying their maps: a step that updates one landmark adds
 // about one path per particle to the memory the set holds, not a map.
 TEST(FastSlamMemory, ResamplingSharesTheParticlesMaps) {

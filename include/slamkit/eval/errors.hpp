@@ -9,7 +9,11 @@
 
 namespace slamkit {
 
-// Normalised estimation error squared eᵀ C⁻¹ e of a pose error (dx, dy, wrapped dθ).
+// Normalised estimation error squared eᵀ C⁻¹ e of a pose error (dx, dy, wrapped dθ). When C is
+// singular or indefinite (an eigenvalue at most 1e-14 of the largest), the error along those
+// directions decides: none (|e| ≤ 1e-12 there, as at a filter's exact start) adds nothing, any
+// other is +infinity: a filter that claims to know a direction exactly and is wrong there is
+// infinitely over-confident. A particle filter whose particles collapsed onto one pose does that.
 double Nees(const Eigen::Vector3d& error, const Eigen::Matrix3d& covariance);
 
 // Root mean square of the position part and of the heading part of pose errors.

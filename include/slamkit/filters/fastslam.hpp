@@ -3,8 +3,10 @@
 #include <cstdint>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -116,9 +118,13 @@ class FastSlam final : public LandmarkSlamFilter {
   // a non-finite measurement or covariance (before any change).
   std::vector<AssociationDecision> Update(std::span<const PointObservation> observations) override;
 
-  // Weighted mean of the particles (heading averaged on the circle).
+  // Weighted mean of the particles (heading averaged on the circle). After an Update() that
+  // resampled, until the next Predict(), the mean of the weighted set before resampling: drawing
+  // copies adds variance and no information (Probabilistic Robotics Sec. 4.3.4), and the copies'
+  // spread, with few distinct ancestors, would understate the uncertainty.
   Pose2 PoseEstimate() const override;
-  // Weighted spread of the particles about PoseEstimate(), plus their pending 2.0 covariances.
+  // Weighted spread of the particles about PoseEstimate(), plus their pending 2.0 covariances;
+  // before resampling, as PoseEstimate().
   Eigen::Matrix3d PoseCovariance() const override;
   int NumLandmarks() const override { return static_cast<int>(Map().landmarks.size()); }
   LandmarkMap Map() const override;
@@ -147,6 +153,8 @@ class FastSlam final : public LandmarkSlamFilter {
   std::vector<AssociationDecision> Report(const std::vector<ParticleUpdate>& updates,
                                           const std::vector<int>& slot_of_observation);
   int IndexOf(int slot);
+  Pose2 WeightedMean() const;
+  Eigen::Matrix3d WeightedSpread(const Pose2& mean) const;
   MappedLandmark Mapped(int slot, const FastSlamLandmark& l) const;
 
   FastSlamParams params_;
@@ -157,6 +165,8 @@ class FastSlam final : public LandmarkSlamFilter {
   int step_ = 0;  // Predict() and Update() calls since Reset(): the particle streams' step
   bool resampled_ = false;
   bool updated_ = false;  // an Update() since Reset(): the particles' maps may differ
+  // The weighted set's pose Gaussian just before the last resampling, until the next Predict().
+  std::optional<std::pair<Pose2, Eigen::Matrix3d>> before_resampling_;
   // Slots: every landmark any particle holds; the grid finds them near a pose.
   std::vector<LandmarkId> slot_source_ids_;
   std::unordered_map<LandmarkId, int> slot_of_id_;

@@ -60,7 +60,8 @@ RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
 // What the outputs keep of one run (metrics.json's per_run).
 struct RunSummary {
   PoseRmse rmse;
-  double anees = 0.0;  // mean over steps of the pose NEES
+  double anees = 0.0;  // mean over the steps with a finite pose NEES
+  int nees_infinite_steps = 0;  // steps whose pose covariance ruled out the error (eval Nees)
   std::size_t landmarks_mapped = 0;
   double map_rmse_m = 0.0;
   AssociationScore association;
@@ -101,7 +102,8 @@ struct MonteCarloResult {
   std::vector<double> position_rmse_m;  // over runs at each step
   std::vector<double> heading_rmse_rad;
   ChiSquareBand band;                   // 95 % band of one step's ANEES
-  double anees_mean = 0.0;              // ANEES averaged over steps
+  double anees_mean = 0.0;              // ANEES averaged over the steps where it is finite
+  int anees_infinite_steps = 0;         // steps where a run's covariance ruled out its error
   double anees_fraction_in_band = 0.0;  // share of steps whose ANEES is inside the band
   PoseRmse rmse;                        // over all runs and steps
   double landmarks_mapped_mean = 0.0;
