@@ -7,6 +7,8 @@
 #include <unordered_set>
 #include <utility>
 
+#include "slamkit/filters/node_pool.hpp"
+
 namespace slamkit {
 
 // A persistent map from landmark index to `T`: FastSLAM's balanced landmark tree shared between
@@ -67,7 +69,7 @@ class LandmarkTree {
   int capacity() const { return 1 << levels_; }
   int levels() const { return levels_; }
 
-  // Bytes of one leaf and of one branch as allocated by std::make_shared (the node beside its
+  // Bytes of one leaf and of one branch as allocated by std::allocate_shared (the node beside its
   // control block: a vtable pointer and two counts), for memory accounting.
   static constexpr std::size_t LeafBytes() { return sizeof(Leaf) + kControlBlockBytes; }
   static constexpr std::size_t BranchBytes() { return sizeof(Branch) + kControlBlockBytes; }
@@ -90,7 +92,7 @@ class LandmarkTree {
   static constexpr std::size_t kControlBlockBytes = sizeof(void*) + 2 * sizeof(int);
 
   // Leaves and branches share no virtual base: a node's kind follows from its level, and
-  // std::make_shared records the right deleter for each.
+  // std::allocate_shared records the right deleter for each.
   struct NodeBase {};
   using NodePtr = std::shared_ptr<const NodeBase>;
   struct Branch : NodeBase {
@@ -101,13 +103,19 @@ class LandmarkTree {
     T value;
   };
 
+  // Nodes come from NodePool: a step of a particle filter allocates and frees thousands.
+  template <class Node, class... Args>
+  static std::shared_ptr<Node> MakeNode(Args&&... args) {
+    return std::allocate_shared<Node>(NodePoolAllocator<Node>(), std::forward<Args>(args)...);
+  }
+
   // The child taken at `level` (levels_ at the root, 1 just above the leaves).
   static int Bit(int index, int level) { return (index >> (level - 1)) & 1; }
 
   void Grow() {
     if (levels_ >= 30) throw std::length_error("LandmarkTree: more than 2^30 indices");
     if (root_ != nullptr) {
-      auto root = std::make_shared<Branch>();
+      auto root = MakeNode<Branch>();
       root->children[0] = std::move(root_);
       root_ = std::move(root);
     }
@@ -117,10 +125,10 @@ class LandmarkTree {
   static NodePtr SetIn(const NodePtr& node, int level, int index, T&& value, bool& added) {
     if (level == 0) {
       added = node == nullptr;
-      return std::make_shared<Leaf>(std::move(value));
+      return MakeNode<Leaf>(std::move(value));
     }
-    auto copy = node ? std::make_shared<Branch>(*static_cast<const Branch*>(node.get()))
-                     : std::make_shared<Branch>();
+    auto copy = node ? MakeNode<Branch>(*static_cast<const Branch*>(node.get()))
+                     : MakeNode<Branch>();
     NodePtr& child = copy->children[Bit(index, level)];
     child = SetIn(child, level - 1, index, std::move(value), added);
     return copy;
@@ -129,7 +137,7 @@ class LandmarkTree {
   // Only called on a path that holds a value at `index`. Drops branches left empty.
   static NodePtr EraseIn(const NodePtr& node, int level, int index) {
     if (level == 0) return nullptr;
-    auto copy = std::make_shared<Branch>(*static_cast<const Branch*>(node.get()));
+    auto copy = MakeNode<Branch>(*static_cast<const Branch*>(node.get()));
     NodePtr& child = copy->children[Bit(index, level)];
     child = EraseIn(child, level - 1, index);
     if (copy->children[0] == nullptr && copy->children[1] == nullptr) return nullptr;
