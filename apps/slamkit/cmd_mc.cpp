@@ -1,5 +1,5 @@
 // `slamkit mc` and `slamkit demo`: Monte Carlo landmark SLAM (EKF-SLAM, FastSLAM 1.0 / 2.0) on a
-// simulated scenario.
+// simulated scenario, on its route or with SWSLAM's self-detected waypoints.
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -12,9 +12,12 @@
 #include "progress.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
+#include "slamkit/report/figures.hpp"
+#include "slamkit/runners/active_monte_carlo.hpp"
+#include "slamkit/runners/active_outputs.hpp"
+#include "slamkit/runners/filter_choice.hpp"
 #include "slamkit/runners/outputs.hpp"
 #include "slamkit/runners/scenario_config.hpp"
-#include "slamkit/report/figures.hpp"
 
 namespace slamkit::app {
 namespace {
@@ -26,18 +29,20 @@ struct McOptions {
   int threads = 0;
   std::string filter = "ekf";  // ekf | fastslam1 | fastslam2
   int particles = FastSlamParams{}.particles;
+  std::string planner;  // route | swslam; empty: the config's planner section
   std::string out;
   bool no_figures = false;
   bool unknown_association = false;
   bool known_association = false;
 };
 
-void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
+void PrintSummary(const ScenarioConfig& config, const ActiveMonteCarloResult& result) {
+  const MonteCarloResult& mc = result.mc;
   const ScenarioParams& scenario = config.scenario;
   const AssociationScore& a = mc.association;
-  fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association\n", scenario.name,
-             mc.run_count, mc.t_s.size(), mc.world.landmarks.size(),
-             AssociationName(config.ekf.association_method));
+  fmt::print("scenario {}: {} runs x {} steps, {} landmarks, {} association, planner {}\n",
+             scenario.name, mc.run_count, mc.t_s.size(), mc.world.landmarks.size(),
+             AssociationName(config.ekf.association_method), PlannerName(result.planner));
   fmt::print("  {:<28}{:>14}\n", "position RMSE [m]", fmt::format("{:.4f}", mc.rmse.position_m));
   fmt::print("  {:<28}{:>14}\n", "heading RMSE [deg]",
              fmt::format("{:.4f}", RadToDeg(mc.rmse.heading_rad)));
@@ -58,11 +63,15 @@ void PrintSummary(const ScenarioConfig& config, const MonteCarloResult& mc) {
              fmt::format("{:.4f}", 1e3 * mc.step_time_mean_s));
   fmt::print("  {:<28}{:>14}\n", "step time max [ms]",
              fmt::format("{:.4f}", 1e3 * mc.step_time_max_s));
+  fmt::print("{}", SectionMeansText(result.sections));
 }
 
 void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenario,
-                  const MonteCarloResult& mc) {
+                  const ActiveMonteCarloResult& result) {
+  const MonteCarloResult& mc = result.mc;
   PathFigureData path;
+  path.markers_m = result.first_trace.centres_m;
+  path.markers_label = "self-detected waypoints";
   path.title = fmt::format("{}: run 0", scenario.name);
   path.truth = mc.first_run.truth;
   path.estimate = mc.first_run.estimate;
@@ -81,55 +90,44 @@ void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenar
   WriteConsistencyFigure(dir / "consistency.png", consistency);
 }
 
-// The filter --filter names: the scenario's EKF, or FastSLAM on the same vehicle and sensor with
-// the scenario's association (known, or each particle's maximum likelihood) and new-landmark gate.
-LandmarkFilterFactory FactoryOf(const McOptions& options, const ScenarioConfig& config) {
-  if (options.filter == "ekf") return EkfSlamFactory(config);
-  FastSlamParams fastslam;
-  fastslam.proposal =
-      options.filter == "fastslam1" ? FastSlamProposal::kMotion : FastSlamProposal::kObservation;
-  fastslam.particles = options.particles;
-  fastslam.known_association = config.ekf.known_association();
-  fastslam.new_landmark_chi2 = config.ekf.association.new_landmark_chi2;
-  fastslam.association_margin_m = config.ekf.association_margin_m;
-  return FastSlamFactory(fastslam, config.scenario.vehicle, config.scenario.sensor);
-}
-
 int RunMonteCarloCommand(const McOptions& options) {
   ScenarioConfig config = LoadScenario(options.config);
   if (options.known_association) config.ekf.association_method = AssociationMethod::kKnown;
   if (options.unknown_association) {
     config.ekf.association_method = AssociationMethod::kNearestNeighbour;
   }
+  const FilterKind filter = ParseFilterKind(options.filter);
+  const PlannerKind planner =
+      options.planner.empty() ? config.planner.kind : ParsePlannerKind(options.planner);
+  const LandmarkFilterFactory factory = FactoryForFilter(filter, options.particles, config);
   OutputDir output(options.out);
-  MonteCarloParams params;
-  params.runs = options.runs;
-  params.seed = options.seed;
-  params.threads = options.threads > 0 ? options.threads : UsableCpuCount();
-  params.known_association = config.ekf.known_association();
+  ActiveMonteCarloParams params;
+  params.mc.runs = options.runs;
+  params.mc.seed = options.seed;
+  params.mc.threads = options.threads > 0 ? options.threads : UsableCpuCount();
   auto progress = std::make_shared<Progress>("runs", options.runs);
-  params.progress = [progress](int done, int total) {
+  params.mc.progress = [progress](int done, int total) {
     (void)total;
     progress->Update(done);
   };
   const std::filesystem::path& dir = output.staging();
-  // Each run is written as it finishes and dropped, summary included, so memory stays flat
-  // however many runs are asked for.
-  params.keep_runs = false;
-  params.keep_summaries = false;
+  // Each run is written as it finishes and dropped, summary and trace included, so memory stays
+  // flat however many runs are asked for.
+  params.mc.keep_runs = false;
+  params.mc.keep_summaries = false;
+  params.keep_traces = false;
   MonteCarloWriter writer(dir);
-  params.on_run = [&writer](int k, const RunResult& run, const RunSummary& summary) {
-    writer.Add(k, run, summary);
+  params.on_run = [&writer](int k, const RunResult& run, const RunSummary& summary,
+                            const ActiveRunTrace& trace) {
+    writer.Add(k, run, summary, ActiveRunTraceJson(trace));
   };
-  const MonteCarloResult mc = RunMonteCarlo(config.scenario, FactoryOf(options, config), params);
+  const ActiveMonteCarloResult result = RunActiveMonteCarlo(config, factory, planner, params);
   // Figures first: metrics.json is written last, so its presence means the run completed.
-  if (!options.no_figures) WriteFigures(dir, config.scenario, mc);
-  nlohmann::json metrics = MonteCarloMetrics(config, params, mc);
-  metrics["filter"] = options.filter;
-  if (options.filter != "ekf") metrics["particles"] = options.particles;
-  writer.Finish(metrics, mc);
+  if (!options.no_figures) WriteFigures(dir, config.scenario, result);
+  writer.Finish(ActiveMonteCarloMetrics(config, params.mc, result, filter, options.particles),
+                result.mc);
   output.Commit();
-  PrintSummary(config, mc);
+  PrintSummary(config, result);
   fmt::print("wrote {}\n", options.out);
   return 0;
 }
@@ -149,6 +147,10 @@ void AddCommonOptions(CLI::App& cmd, McOptions& o) {
   cmd.add_option("--particles", o.particles, "FastSLAM's particle count")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  cmd.add_option("--planner", o.planner,
+                 "route (drive the route) or swslam (self-detected waypoints, SPEC S2); default: "
+                 "the config's planner section")
+      ->check(CLI::IsMember({"route", "swslam"}));
   cmd.add_flag("--known-association", o.known_association, "use the simulator's landmark ids");
   cmd.add_flag("--unknown-association", o.unknown_association,
                "nearest-neighbour association (overrides the config)");
@@ -158,7 +160,8 @@ void AddCommonOptions(CLI::App& cmd, McOptions& o) {
 
 void RegisterMonteCarlo(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<McOptions>();
-  CLI::App* cmd = app.add_subcommand("mc", "Monte Carlo EKF-SLAM runs on a simulated scenario");
+  CLI::App* cmd =
+      app.add_subcommand("mc", "Monte Carlo landmark SLAM runs on a simulated scenario");
   cmd->add_option("--config", options->config, "scenario YAML file (see docs/scenario.md)")
       ->required()
       ->check(CLI::ExistingFile);

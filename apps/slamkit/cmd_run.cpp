@@ -12,12 +12,13 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/filters/fastslam.hpp"
+#include "slamkit/io/isam_reader.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/relative_point.hpp"
+#include "slamkit/report/figures.hpp"
+#include "slamkit/runners/filter_choice.hpp"
 #include "slamkit/runners/isam_config.hpp"
 #include "slamkit/runners/outputs.hpp"
-#include "slamkit/io/isam_reader.hpp"
-#include "slamkit/report/figures.hpp"
 
 namespace slamkit::app {
 namespace {
@@ -73,14 +74,10 @@ IsamRunParams ParamsOf(const RunOptions& o) {
 // EKF-SLAM, or FastSLAM with the same odometry and sighting models and the same noise, its
 // association the EKF's known or per-particle maximum likelihood and its new-landmark gate.
 IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunParams& params) {
-  if (o.filter == "ekf") return RunEkfSlamOnIsam(log, params);
-  FastSlamParams fastslam;
-  fastslam.proposal =
-      o.filter == "fastslam1" ? FastSlamProposal::kMotion : FastSlamProposal::kObservation;
-  fastslam.particles = o.particles;
+  const FilterKind kind = ParseFilterKind(o.filter);
+  if (kind == FilterKind::kEkf) return RunEkfSlamOnIsam(log, params);
+  FastSlamParams fastslam = FastSlamParamsFor(kind, o.particles, params.ekf);
   fastslam.threads = o.threads > 0 ? o.threads : UsableCpuCount();
-  fastslam.known_association = params.ekf.known_association();
-  fastslam.new_landmark_chi2 = params.ekf.association.new_landmark_chi2;
   FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
                   std::make_unique<RelativePointModel>());
   return RunFilterOnIsam(filter, log, params, fastslam.known_association);

@@ -14,5 +14,6 @@ void RegisterGridSim(CLI::App& app, int& exit_code);
 void RegisterSuite(CLI::App& app, int& exit_code);
 void RegisterExplore(CLI::App& app, int& exit_code);
 void RegisterFeatures(CLI::App& app, int& exit_code);
+void RegisterStudy(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -43,6 +43,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterSuite(app, exit_code);
   slamkit::app::RegisterExplore(app, exit_code);
   slamkit::app::RegisterFeatures(app, exit_code);
+  slamkit::app::RegisterStudy(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

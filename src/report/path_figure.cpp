@@ -35,6 +35,7 @@ using internal::XyData;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kEllipsePoints = 36;
+constexpr double kMarkerSize = 1.5;  // of PathFigureData::markers_m, MathGL's default being 1
 
 // Layout, tuned by eye on 1200×1000 images: MathGL scales fonts with the region's size.
 constexpr Region kPathRegion{-0.07, 1.1, -0.05, 1.06};
@@ -67,15 +68,18 @@ struct MapLayers {
   XyData true_landmarks;
   XyData landmarks;
   XyData ellipses;
+  XyData markers;
 };
 
 // The layers that place the view and the legend: all but the ellipses.
-std::array<const XyData*, 4> MarkedLayers(const MapLayers& layers) {
-  return {&layers.truth, &layers.estimate, &layers.true_landmarks, &layers.landmarks};
+std::array<const XyData*, 5> MarkedLayers(const MapLayers& layers) {
+  return {&layers.truth, &layers.estimate, &layers.true_landmarks, &layers.landmarks,
+          &layers.markers};
 }
 
 MapLayers BuildLayers(const PathFigureData& data) {
-  MapLayers layers{PathPoints(data.truth), PathPoints(data.estimate), {}, {}, {}};
+  MapLayers layers{PathPoints(data.truth), PathPoints(data.estimate), {}, {}, {}, {}};
+  for (const Eigen::Vector2d& p : data.markers_m) layers.markers.Add(p.x(), p.y());
   for (const Landmark& l : data.true_landmarks.landmarks) {
     layers.true_landmarks.Add(l.position_m.x(), l.position_m.y());
   }
@@ -106,19 +110,25 @@ struct Layer {
 
 // Draws bottom to top (ellipses under paths under markers) and lists the legend in reading order;
 // false when there was nothing to draw.
-bool DrawMapLayers(mglGraph& gr, const MapLayers& layers, double sigma) {
+bool DrawMapLayers(mglGraph& gr, const MapLayers& layers, const PathFigureData& data) {
+  const double sigma = data.ellipse_sigma;
   char ellipse_label[64];
   std::snprintf(ellipse_label, sizeof(ellipse_label), "%g\\sigma{} ellipses", sigma);
   const Layer drawn[] = {{&layers.ellipses, "{r6}-", ellipse_label},
                          {&layers.truth, "k-2", "true path"},
                          {&layers.estimate, "b-2", "estimated path"},
                          {&layers.landmarks, "r .", "estimated landmarks"},
-                         {&layers.true_landmarks, "g +", "true landmarks"}};
+                         {&layers.true_landmarks, "g +", "true landmarks"},
+                         {&layers.markers, "m #o", Escaped(data.markers_label)}};
   for (const Layer& layer : drawn) {
-    if (!layer.xy->Empty()) gr.Plot(mglData(layer.xy->x), mglData(layer.xy->y), layer.pen);
+    if (layer.xy->Empty()) continue;
+    // The few marked points must stand out among the landmarks: larger circles.
+    if (layer.xy == &layers.markers) gr.SetMarkSize(kMarkerSize);
+    gr.Plot(mglData(layer.xy->x), mglData(layer.xy->y), layer.pen);
+    if (layer.xy == &layers.markers) gr.SetMarkSize(1.0);
   }
   bool any = false;
-  for (const int i : {1, 2, 4, 3, 0}) {
+  for (const int i : {1, 2, 4, 3, 5, 0}) {
     if (drawn[i].xy->Empty()) continue;
     gr.AddLegend(drawn[i].legend.c_str(), drawn[i].pen);
     any = true;
@@ -157,7 +167,7 @@ void WritePathFigure(const std::filesystem::path& path, const PathFigureData& da
   const Box box = SetMapRanges(gr, layers);
   DrawFrame(gr, "x [m]", "y [m]");
   if (!data.title.empty()) PutsAboveBox(gr, box, Escaped(data.title), 0.03, -1.4);
-  if (DrawMapLayers(gr, layers, data.ellipse_sigma)) {
+  if (DrawMapLayers(gr, layers, data)) {
     gr.Legend(EmptiestCorner(MarkedLayers(layers), box), "#", "size 2.5");
   }
   WriteAtomically(gr, path, format);

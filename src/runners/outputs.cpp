@@ -22,10 +22,10 @@ nlohmann::json AssociationJson(const AssociationScore& s) {
 
 void WriteConsistencyCsv(const std::filesystem::path& path, const MonteCarloResult& mc) {
   WriteFileAtomically(path, [&](std::ostream& out) {
-    out << "t_s,anees,position_rmse_m,heading_rmse_rad\n";
+    out << "t_s,anees,position_rmse_m,heading_rmse_rad,runs\n";
     for (std::size_t k = 0; k < mc.t_s.size(); ++k) {
-      out << fmt::format("{:.6f},{:.17g},{:.17g},{:.17g}\n", mc.t_s[k], mc.anees[k],
-                         mc.position_rmse_m[k], mc.heading_rmse_rad[k]);
+      out << fmt::format("{:.6f},{:.17g},{:.17g},{:.17g},{}\n", mc.t_s[k], mc.anees[k],
+                         mc.position_rmse_m[k], mc.heading_rmse_rad[k], mc.runs_at_step[k]);
     }
   });
 }
@@ -65,15 +65,8 @@ nlohmann::json RunSummaryJson(int k, const RunSummary& r) {
           {"step_time_max_s", r.step_time_max_s}};
 }
 
-nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
-                                 const MonteCarloResult& mc) {
-  const ScenarioParams& scenario = config.scenario;
-  return {{"scenario", scenario.name},
-          {"motion_model", ToString(scenario.vehicle.kind)},
-          {"known_association", config.ekf.known_association()},
-          {"runs", params.runs},
-          {"seed", params.seed},
-          {"steps", mc.t_s.size()},
+nlohmann::json MonteCarloResultJson(const MonteCarloResult& mc) {
+  return {{"steps", mc.t_s.size()},
           {"landmarks_in_world", mc.world.landmarks.size()},
           {"position_rmse_m", mc.rmse.position_m},
           {"heading_rmse_rad", mc.rmse.heading_rad},
@@ -86,6 +79,18 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
           {"association", AssociationJson(mc.association)},
           {"step_time_mean_s", mc.step_time_mean_s},
           {"step_time_max_s", mc.step_time_max_s}};
+}
+
+nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
+                                 const MonteCarloResult& mc) {
+  const ScenarioParams& scenario = config.scenario;
+  nlohmann::json metrics = {{"scenario", scenario.name},
+                            {"motion_model", ToString(scenario.vehicle.kind)},
+                            {"known_association", config.ekf.known_association()},
+                            {"runs", params.runs},
+                            {"seed", params.seed}};
+  metrics.update(MonteCarloResultJson(mc));
+  return metrics;
 }
 
 MonteCarloWriter::MonteCarloWriter(std::filesystem::path dir)
@@ -102,13 +107,20 @@ MonteCarloWriter::~MonteCarloWriter() {
 }
 
 void MonteCarloWriter::Add(int k, const RunResult& run, const RunSummary& summary) {
+  Add(k, run, summary, nlohmann::json::object());
+}
+
+void MonteCarloWriter::Add(int k, const RunResult& run, const RunSummary& summary,
+                           const nlohmann::json& extra) {
   const std::filesystem::path run_dir = dir_ / fmt::format("run_{}", k);
   std::filesystem::create_directories(run_dir);
   WriteTumTrajectory(run_dir / "estimate.tum", run.estimate);
   WriteTumTrajectory(run_dir / "truth.tum", run.truth);
   WriteLandmarkMapCsv(run_dir / "map.csv", run.map);
   WriteErrorsCsv(run_dir / "errors.csv", run);
-  scratch_ << (runs_ > 0 ? ",\n" : "") << IndentedEntry(RunSummaryJson(k, summary));
+  nlohmann::json entry = RunSummaryJson(k, summary);
+  entry.update(extra);
+  scratch_ << (runs_ > 0 ? ",\n" : "") << IndentedEntry(entry);
   if (!scratch_) throw std::runtime_error("cannot write " + scratch_path_.string());
   ++runs_;
 }

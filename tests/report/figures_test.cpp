@@ -238,6 +238,25 @@ TEST_F(Figures, PathFigureDrawsEveryLayerInItsColour) {
   EXPECT_GT(green, 40);   // 40 true landmarks
 }
 
+// SWSLAM's chosen waypoints: filled magenta discs, and the legend's entry; nothing magenta
+// without them.
+TEST_F(Figures, PathFigureMarksTheGivenPoints) {
+  PathFigureData data = SamplePathData(40);
+  WritePathFigure(dir_ / "plain.png", data);
+  data.markers_m = {{0.0, 0.0}, {10.0, 5.0}, {-10.0, -5.0}};
+  WritePathFigure(dir_ / "marked.png", data);
+  auto magenta = [](const RgbaImage& image) {
+    int n = 0;
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+      const std::uint8_t* p = &image.rgba[i];
+      n += p[0] > 180 && p[1] < 90 && p[2] > 180 ? 1 : 0;
+    }
+    return n;
+  };
+  EXPECT_EQ(magenta(ReadPng(dir_ / "plain.png")), 0);
+  EXPECT_GT(magenta(ReadPng(dir_ / "marked.png")), 4 * 30);  // three discs and the legend's
+}
+
 // The data are drawn where they belong: each series lands in its own panel's third of the image,
 // and a missing series leaves its panel without a line.
 TEST_F(Figures, ConsistencyFigureDrawsEachSeriesInItsPanel) {

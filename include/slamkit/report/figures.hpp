@@ -21,6 +21,10 @@ struct PathFigureData {
   Trajectory estimate;
   LandmarkWorld true_landmarks;
   LandmarkMap map;
+  // Points to mark with large circles (SWSLAM's self-detected waypoints), listed in the legend
+  // as `markers_label`.
+  std::vector<Eigen::Vector2d> markers_m;
+  std::string markers_label = "waypoints";
   double ellipse_sigma = 2.0;
   int width_px = 1200;
   int height_px = 1000;

@@ -89,23 +89,29 @@ struct MonteCarloParams {
   int batch_runs = 64;
 };
 
-// Aggregates over runs. Per-step series are over the runs (all runs share the true trajectory:
-// noise enters through the controls and the sensor, never the true vehicle).
+// Aggregates over runs. Per-step series are over the runs still running at that step: in the
+// open loop every run has the same length (all runs share the true trajectory: noise enters
+// through the controls and the sensor, never the true vehicle); in a closed loop
+// (active_monte_carlo.hpp) a run that detours is longer, and the tail of a series is a mean over
+// fewer runs (runs_at_step says how many).
 struct MonteCarloResult {
   LandmarkWorld world;
   int run_count = 0;
   std::vector<RunResult> runs;          // every run with MonteCarloParams::keep_runs, else empty
   RunResult first_run;                  // run 0 (the figures draw it)
   std::vector<RunSummary> summaries;    // one per run, in index order, with keep_summaries
-  std::vector<double> t_s;
-  std::vector<double> anees;            // mean NEES over runs at each step
-  std::vector<double> position_rmse_m;  // over runs at each step
+  std::vector<double> t_s;              // the steps of the longest run
+  std::vector<int> runs_at_step;        // runs that reached each step
+  std::vector<double> anees;            // mean NEES over those runs at each step
+  std::vector<double> position_rmse_m;  // over those runs at each step
   std::vector<double> heading_rmse_rad;
-  ChiSquareBand band;                   // 95 % band of one step's ANEES
+  ChiSquareBand band;                   // 95 % band of one step's ANEES over all the runs
   double anees_mean = 0.0;              // ANEES averaged over the steps where it is finite
   int anees_infinite_steps = 0;         // steps where a run's covariance ruled out its error
-  double anees_fraction_in_band = 0.0;  // share of steps whose ANEES is inside the band
-  PoseRmse rmse;                        // over all runs and steps
+  // Share of steps whose ANEES is inside the 95 % band of a mean over runs_at_step runs (`band`
+  // where every run reached the step).
+  double anees_fraction_in_band = 0.0;
+  PoseRmse rmse;  // RMS over runs of each run's RMS
   double landmarks_mapped_mean = 0.0;
   double map_rmse_mean_m = 0.0;         // mean over runs
   double step_time_mean_s = 0.0;

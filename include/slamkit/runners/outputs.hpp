@@ -16,14 +16,17 @@ namespace slamkit {
 nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloParams& params,
                                   const MonteCarloResult& result);
 
+// The keys of MonteCarloMetrics that come from the result alone: `steps` onwards.
+nlohmann::json MonteCarloResultJson(const MonteCarloResult& result);
+
 // Run k's entry of metrics.json's `per_run`: the summary keys, per run, with `run`: k.
 nlohmann::json RunSummaryJson(int k, const RunSummary& summary);
 
 // Writes a Monte Carlo experiment into a fresh folder DIR as its runs finish, keeping none of
 // them in memory. Add(k, ...) writes DIR/run_<k>/{estimate.tum, truth.tum, map.csv, errors.csv}
 // and appends run k's per_run entry to a scratch file in DIR; Finish writes DIR/world.csv,
-// DIR/consistency.csv (t, ANEES, RMSEs per step) and, last, DIR/metrics.json: the summary keys,
-// then `per_run` copied from the scratch file, which is removed. Each file is written
+// DIR/consistency.csv (t, ANEES, RMSEs and runs per step) and, last, DIR/metrics.json: the summary
+// keys, then `per_run` copied from the scratch file, which is removed. Each file is written
 // atomically. Throws std::runtime_error naming the file when a write fails.
 class MonteCarloWriter {
  public:
@@ -33,6 +36,8 @@ class MonteCarloWriter {
   MonteCarloWriter& operator=(const MonteCarloWriter&) = delete;
 
   void Add(int k, const RunResult& run, const RunSummary& summary);
+  // The same, with `extra`'s keys added to run k's per_run entry (a closed loop's sections).
+  void Add(int k, const RunResult& run, const RunSummary& summary, const nlohmann::json& extra);
   void Finish(const nlohmann::json& summary, const MonteCarloResult& result);
 
  private:
