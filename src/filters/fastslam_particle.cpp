@@ -131,6 +131,38 @@ Match MostLikely(const std::vector<Candidate>& candidates, const PoseBelief& x,
   return m;
 }
 
+// The EKF's rule per particle (SPEC S2, Eqs. 6-7): the most likely landmark not yet taken among
+// those within gate_chi2; none there but one within new_landmark_chi2: dropped as ambiguous;
+// none within that either: new. p0 compares a density with densities of other covariances, so
+// a landmark whose prediction is uncertain (2.0's pose covariance after a long blind stretch)
+// loses to p0 even when it lies well within its distribution; the distance does not.
+Match WithinGates(const std::vector<Candidate>& candidates, const PoseBelief& x,
+                  const PointObservation& obs, const ScanInputs& scan) {
+  Match m;
+  double best = -kInfinity;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    if (candidates[i].taken) continue;
+    Comparison c = Compare(candidates[i], x, obs, scan.sensor);
+    m.nearest_chi2 = std::min(m.nearest_chi2, c.distance_chi2);
+    if (c.distance_chi2 <= scan.params.gate_chi2 && c.log_likelihood > best) {
+      best = c.log_likelihood;
+      m.candidate = static_cast<int>(i);
+      m.comparison = c;
+    }
+  }
+  m.dropped = m.candidate < 0 && m.nearest_chi2 <= scan.params.new_landmark_chi2;
+  return m;
+}
+
+Match Decide(std::vector<Candidate>& candidates, const FastSlamParticle& p, const PoseBelief& x,
+             const PointObservation& obs, const ScanInputs& scan) {
+  if (scan.params.known_association) return KnownMatch(candidates, p, x, obs, scan);
+  if (scan.params.new_landmark_test == NewLandmarkTest::kMahalanobis) {
+    return WithinGates(candidates, x, obs, scan);
+  }
+  return MostLikely(candidates, x, obs, scan);
+}
+
 // Montemerlo et al. 2003, Eqs. 19-20 in Kalman form: the pose proposal conditioned on one more
 // sighting of a known landmark, whose uncertainty enters through Q. The Kalman form needs no
 // inverse of Σ, which is singular for a motion model with fewer noise components than states.
@@ -224,13 +256,14 @@ std::vector<Match> Associate(std::vector<Candidate>& candidates, const FastSlamP
   std::vector<Match> matches;
   matches.reserve(scan.observations.size());
   for (const PointObservation& obs : scan.observations) {
-    Match m = scan.params.known_association ? KnownMatch(candidates, p, x, obs, scan)
-                                            : MostLikely(candidates, x, obs, scan);
+    Match m = Decide(candidates, p, x, obs, scan);
     if (m.candidate >= 0) {
       candidates[m.candidate].taken = true;
       log_weight += m.comparison.log_likelihood;
       if (scan.params.proposal == FastSlamProposal::kObservation) RefineProposal(x, m.comparison);
-    } else if (!m.dropped) {
+    } else if (!m.dropped || !scan.params.known_association) {
+      // A sighting left unmatched has p0 (dropped ones too: a particle that cannot tell must not
+      // gain on one that matched, by a density of 1 against one of other units).
       log_weight += LogNewLandmarkLikelihood(obs.R, scan.params.new_landmark_chi2);
     }
     matches.push_back(m);

@@ -41,6 +41,7 @@ FastSlamParams FastSlamParamsFor(FilterKind kind, int particles, const EkfSlamPa
   fastslam.particles = particles;
   fastslam.known_association = ekf.known_association();
   fastslam.new_landmark_chi2 = ekf.association.new_landmark_chi2;
+  fastslam.gate_chi2 = ekf.association.gate_chi2;
   fastslam.association_margin_m = ekf.association_margin_m;
   return fastslam;
 }

@@ -1,6 +1,7 @@
 #include "slamkit/runners/isam_config.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <yaml-cpp/yaml.h>
@@ -31,15 +32,43 @@ void ReadAssociation(const Section& s, EkfSlamParams* ekf) {
   ekf->jcbb.max_joint_tests = max_joint_tests;
 }
 
+const std::vector<std::string> kNewLandmarkTests = {"likelihood", "mahalanobis"};
+
+void ReadFastSlam(const Section& parent, IsamFastSlamAssociation* f) {
+  const Section s = parent.Child("fastslam", {"new_landmark_test", "gate_chi2", "new_landmark_chi2"});
+  f->new_landmark_test = static_cast<NewLandmarkTest>(config::ReadChoice(
+      s, "new_landmark_test", kNewLandmarkTests, static_cast<int>(f->new_landmark_test)));
+  for (const auto& [key, value] : {std::pair{"gate_chi2", &f->gate_chi2},
+                                   std::pair{"new_landmark_chi2", &f->new_landmark_chi2}}) {
+    if (!s.Has(key)) continue;
+    double v = 0.0;
+    s.Read(key, &v, Bound::kPositive);
+    *value = v;
+  }
+  if (f->gate_chi2 && f->new_landmark_chi2 && *f->new_landmark_chi2 < *f->gate_chi2) {
+    s.Fail("new_landmark_chi2", "new_landmark_chi2 must be >= gate_chi2");
+  }
+}
+
+// Unset gates are left out (they follow the EKF's), so that the file reads back as it was.
+nlohmann::json FastSlamJson(const IsamFastSlamAssociation& f) {
+  nlohmann::json j = {
+      {"new_landmark_test", kNewLandmarkTests[static_cast<int>(f.new_landmark_test)]}};
+  if (f.gate_chi2) j["gate_chi2"] = *f.gate_chi2;
+  if (f.new_landmark_chi2) j["new_landmark_chi2"] = *f.new_landmark_chi2;
+  return j;
+}
+
 }  // namespace
 
 IsamRunParams LoadIsamConfig(const std::filesystem::path& path, const IsamRunParams& defaults) {
   const YAML::Node yaml = config::LoadYamlFile(path);
   const Section s(yaml, path.string(), "",
                   {"association", "gate_chi2", "new_landmark_chi2", "max_joint_tests", "odometry",
-                   "sightings", "score_against_merged_reference"});
+                   "sightings", "score_against_merged_reference", "fastslam"});
   IsamRunParams p = defaults;
   ReadAssociation(s, &p.ekf);
+  ReadFastSlam(s, &p.fastslam);
   const Section o = s.Child("odometry", {"covariance_scale", "srr", "srt", "str", "stt"});
   o.Read("covariance_scale", &p.odometry_covariance_scale, Bound::kPositive);
   o.Read("srr", &p.odometry_noise.srr, Bound::kNonNegative);
@@ -76,7 +105,8 @@ nlohmann::json IsamParamsJson(const IsamRunParams& p) {
            {{"covariance_scale", p.sighting_covariance_scale},
             {"sigma_range_m", p.sighting_sigma_range_m},
             {"sigma_bearing_deg", RadToDeg(p.sighting_sigma_bearing_rad)}}},
-          {"score_against_merged_reference", p.score_against_merged_reference}};
+          {"score_against_merged_reference", p.score_against_merged_reference},
+          {"fastslam", FastSlamJson(p.fastslam)}};
 }
 
 }  // namespace slamkit

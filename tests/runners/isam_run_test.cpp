@@ -103,8 +103,12 @@ TEST_F(IsamConfigFile, ReadsEveryKeyAndWritesItBack) {
                                   "stt: 0.4}\n"
                                   "sightings: {covariance_scale: 3, sigma_range_m: 0.25, "
                                   "sigma_bearing_deg: 2}\n"
-                                  "score_against_merged_reference: false\n");
+                                  "score_against_merged_reference: false\n"
+                                  "fastslam: {new_landmark_test: mahalanobis, gate_chi2: 15}\n");
   const IsamRunParams p = LoadIsamConfig(path);
+  EXPECT_EQ(p.fastslam.new_landmark_test, NewLandmarkTest::kMahalanobis);
+  EXPECT_EQ(p.fastslam.gate_chi2, 15.0);
+  EXPECT_FALSE(p.fastslam.new_landmark_chi2.has_value());
   EXPECT_EQ(p.ekf.association_method, AssociationMethod::kJointCompatibility);
   EXPECT_EQ(p.ekf.association.gate_chi2, 8.0);
   EXPECT_EQ(p.ekf.jcbb.max_joint_tests, 500);
@@ -129,6 +133,11 @@ TEST_F(IsamConfigFile, MistakesNameTheFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error("sightings: {sigma_range_m: 0.3}\n").find("sigma_range_m"), std::string::npos);
   EXPECT_NE(error("odometry: {srq: 1}\n").find("srq"), std::string::npos);
+  EXPECT_NE(error("fastslam: {new_landmark_test: p0}\n").find("fastslam.new_landmark_test"),
+            std::string::npos);
+  EXPECT_NE(error("fastslam: {gate_chi2: 20, new_landmark_chi2: 10}\n")
+                .find("new_landmark_chi2 must be >= gate_chi2"),
+            std::string::npos);
 }
 
 TEST(IsamConfig, TheShippedVictoriaParkFileLoads) {

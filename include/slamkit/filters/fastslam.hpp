@@ -33,6 +33,16 @@ enum class FastSlamProposal {
   kObservation,
 };
 
+// How a particle decides that a sighting starts a new landmark.
+enum class NewLandmarkTest {
+  // Montemerlo et al. 2003, Sec. 4: the most likely landmark is less likely than p0.
+  kLikelihood,
+  // The EKF's test on the squared Mahalanobis distance under the particle's prediction (pose
+  // proposal included): matched within gate_chi2, new beyond new_landmark_chi2 from every
+  // landmark, dropped in between.
+  kMahalanobis,
+};
+
 struct FastSlamParams {
   int particles = 100;
   FastSlamProposal proposal = FastSlamProposal::kObservation;
@@ -43,6 +53,8 @@ struct FastSlamParams {
   // distance at which the observation's own noise density R is taken: a sighting whose best
   // landmark is less likely than N(d² = this; R) starts a new landmark (χ²₂ at 99.9 %: 13.82).
   double new_landmark_chi2 = 13.82;
+  NewLandmarkTest new_landmark_test = NewLandmarkTest::kLikelihood;
+  double gate_chi2 = 9.21;  // with kMahalanobis: χ²₂ at 99 %
   // Landmarks farther than the sensor's range plus this margin from a particle's pose are not
   // considered for association or negative evidence.
   double association_margin_m = 5.0;

@@ -1,17 +1,30 @@
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
+#include "slamkit/filters/fastslam.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/models/odometry_sampling.hpp"
 
 namespace slamkit {
 
+// How FastSLAM's particles associate on a log (`slamkit run --filter fastslam1|fastslam2`). An
+// unset gate is the EKF's (IsamRunParams::ekf). A particle's prediction holds one step's pose
+// uncertainty, not the whole path's, so its innovations are wider than its covariance says
+// wherever the particles miss the true pose: a log may need wider gates than the EKF's.
+struct IsamFastSlamAssociation {
+  NewLandmarkTest new_landmark_test = NewLandmarkTest::kLikelihood;
+  std::optional<double> gate_chi2;
+  std::optional<double> new_landmark_chi2;
+};
+
 struct IsamRunParams {
   EkfSlamParams ekf;
+  IsamFastSlamAssociation fastslam;
   // Multiplies every odometry covariance of the file (the file's are very small).
   double odometry_covariance_scale = 1.0;
   // Multiplies every sighting covariance of the file.
