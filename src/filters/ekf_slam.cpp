@@ -105,7 +105,8 @@ EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motio
       selection_(selection ? std::move(selection) : std::make_unique<SelectAll>()),
       ekf_(0),  // Reset() allocates the state at its capacity
       point_kind_(ekf_.RegisterKind(kPointKind)),
-      point_model_(*sensor_, point_kind_, params.association_margin_m) {
+      point_model_(*sensor_, point_kind_, params.association_margin_m),
+      fej_model_(*sensor_) {
   Reset(Pose2());
 }
 
@@ -118,6 +119,8 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
     point_kind_ = ekf_.RegisterKind(kPointKind);
   }
   ekf_.AddBlock(kPoseKind, pose.vector(), pose_cov);
+  fej_model_.Clear();
+  fej_model_.SetPriorPose(pose);
   landmark_blocks_.clear();
   source_ids_.clear();
   index_of_id_.clear();
@@ -134,6 +137,10 @@ void EkfSlam::Predict(const Control& u, double dt_s, const ControlCovariance* co
   Eigen::Matrix3d J_x_x;
   ControlJacobian J_x_u;
   const Pose2 moved = motion_->Move(pose(), u, dt_s, &J_x_x, &J_x_u);
+  if (params_.jacobians == JacobianEstimates::kFirstEstimates) {
+    FirstEstimatesMotionJacobian(moved, fej_model_.prior_pose(), &J_x_x);
+  }
+  fej_model_.SetPriorPose(moved);
   const ControlCovariance Q = control_noise ? *control_noise : motion_->Noise(u, dt_s);
   ekf_.PredictPose(kPoseBlock, moved, J_x_x, J_x_u, Q);
   ++predictions_;
@@ -150,8 +157,13 @@ Linearisation EkfSlam::LinearisePoint(int landmark, const PointObservation& obs)
   return Linearise(point_model_, ekf_, blocks, obs.z, obs.R);
 }
 
+const ObservationModel& EkfSlam::UpdateModel() const {
+  if (params_.jacobians == JacobianEstimates::kFirstEstimates) return fej_model_;
+  return point_model_;
+}
+
 MatchedObservation EkfSlam::Matched(int landmark, const PointObservation& obs) const {
-  MatchedObservation m{&point_model_, {kPoseBlock, BlockOf(landmark)}, 2, obs.z, obs.R};
+  MatchedObservation m{&UpdateModel(), {kPoseBlock, BlockOf(landmark)}, 2, obs.z, obs.R};
   return m;
 }
 
@@ -172,9 +184,16 @@ double EkfSlam::PointDistance(int landmark, const PointObservation& obs, const P
   return ekf_.MahalanobisSquaredPosePoint(o);
 }
 
+// With kFirstEstimates, H from FirstEstimatesPointModel (Huang, Mourikis, Roumeliotis 2008,
+// Sec. IV); the innovation always from the current means.
+Linearisation EkfSlam::UpdateLinearisation(int landmark, const PointObservation& obs) const {
+  const int blocks[] = {kPoseBlock, BlockOf(landmark)};
+  return Linearise(UpdateModel(), ekf_, blocks, obs.z, obs.R);
+}
+
 // SPEC S1 item 1 (Probabilistic Robotics Table 10.2, one innovation at a time).
 void EkfSlam::UpdateLandmark(int landmark, const PointObservation& obs) {
-  ekf_.Update(LinearisePoint(landmark, obs));
+  ekf_.Update(UpdateLinearisation(landmark, obs));
   unchecked_ = true;
 }
 
@@ -182,6 +201,7 @@ void EkfSlam::UpdateLandmark(int landmark, const PointObservation& obs) {
 int EkfSlam::AddLandmark(const PointObservation& obs) {
   const int observers[] = {kPoseBlock};
   const int block = AugmentFrom(point_model_, ekf_, observers, obs.z, obs.R);
+  fej_model_.Record(block, ekf_.Mean(block));  // Huang et al. 2008, Sec. IV: its first estimate
   unchecked_ = true;
   const int index = NumLandmarks();
   landmark_blocks_.push_back(block);

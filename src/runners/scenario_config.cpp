@@ -118,9 +118,9 @@ void ReadSensor(const Section& root, RangeBearingParams* p, int* period_steps) {
 }
 
 void ReadEkf(const Section& root, EkfSlamParams* p) {
-  const Section s =
-      root.Child("ekf", {"known_association", "association", "gate_chi2", "new_landmark_chi2",
-                         "association_margin_m", "initial_landmark_capacity", "max_joint_tests"});
+  const Section s = root.Child(
+      "ekf", {"known_association", "association", "gate_chi2", "new_landmark_chi2",
+              "association_margin_m", "initial_landmark_capacity", "max_joint_tests", "jacobians"});
   bool known = p->known_association();
   s.Read("known_association", &known);
   // The names follow AssociationMethod's order.
@@ -143,6 +143,9 @@ void ReadEkf(const Section& root, EkfSlamParams* p) {
   }
   s.Read("association_margin_m", &p->association_margin_m, Bound::kNonNegative);
   s.Read("initial_landmark_capacity", &p->initial_landmark_capacity, 1);
+  // The names follow JacobianEstimates' order.
+  p->jacobians = static_cast<JacobianEstimates>(
+      ReadChoice(s, "jacobians", {"current", "first_estimates"}, static_cast<int>(p->jacobians)));
 }
 
 void ReadPlanner(const Section& root, PlannerConfig* p) {

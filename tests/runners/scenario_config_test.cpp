@@ -73,7 +73,7 @@ initial_pose: {x_m: 1, y_m: -1, theta_deg: 90}
 sensor: {max_range_m: 12, min_range_m: 0.5, fov_deg: 120, sigma_range_m: 0.2,
          sigma_bearing_deg: 2, period_steps: 3}
 ekf: {known_association: true, gate_chi2: 5.99, new_landmark_chi2: 20,
-      association_margin_m: 2, initial_landmark_capacity: 16}
+      association_margin_m: 2, initial_landmark_capacity: 16, jacobians: first_estimates}
 planner: {kind: swslam, trigger_periods: 4, k: 5, kmeans_max_iterations: 7,
           max_detour_periods: 9}
 )";
@@ -145,6 +145,7 @@ TEST_F(ScenarioConfigFile, EverySensorAndEkfKeyReachesItsField) {
   EXPECT_EQ(c.ekf.association.new_landmark_chi2, 20.0);
   EXPECT_EQ(c.ekf.association_margin_m, 2.0);
   EXPECT_EQ(c.ekf.initial_landmark_capacity, 16);
+  EXPECT_EQ(c.ekf.jacobians, JacobianEstimates::kFirstEstimates);
 }
 
 TEST_F(ScenarioConfigFile, EveryPlannerKeyReachesItsField) {
@@ -187,6 +188,7 @@ TEST_F(ScenarioConfigFile, AbsentKeysKeepTheDefaults) {
   EXPECT_EQ(p.sensor.fov_rad, d.sensor.fov_rad);
   EXPECT_EQ(p.sensor_period_steps, d.sensor_period_steps);
   EXPECT_EQ(c.ekf.association.gate_chi2, dc.ekf.association.gate_chi2);
+  EXPECT_EQ(c.ekf.jacobians, JacobianEstimates::kCurrent);
   EXPECT_EQ(p.route.loops, d.route.loops);
 }
 

@@ -55,6 +55,7 @@ TEST(ShippedConfigs, DefaultDrivesOneFullLoopUnder5000Steps) {
   EXPECT_DOUBLE_EQ(s.sensor.fov_rad, DegToRad(180.0));
   EXPECT_DOUBLE_EQ(s.sensor.sigma_bearing_rad, DegToRad(1.0));
   EXPECT_FALSE(c.ekf.known_association());
+  EXPECT_EQ(c.ekf.jacobians, JacobianEstimates::kFirstEstimates);
   const LandmarkWorld world = MakeWorld(s.world);
   EXPECT_GE(world.landmarks.size(), 60u);
   EXPECT_LE(world.landmarks.size(), 100u);

@@ -12,6 +12,7 @@
 #include "slamkit/core/state_health.hpp"
 #include "slamkit/filters/block_ekf.hpp"
 #include "slamkit/filters/data_association.hpp"
+#include "slamkit/filters/first_estimates.hpp"
 #include "slamkit/filters/jcbb.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/filters/point_landmark_model.hpp"
@@ -59,6 +60,13 @@ struct EkfSlamParams {
   // observation on the per-observation schedule), so that LastSelectionStats() has the accuracy
   // ratio of SPEC S1, Eq. 24.
   bool selection_diagnostics = false;
+  // Where the updates and predictions linearise: kCurrent, the textbook EKF; kFirstEstimates, the
+  // FEJ-EKF (Huang, Mourikis, Roumeliotis 2008), whose motion Jacobian uses the predicted poses
+  // and whose measurement Jacobians use the scan's predicted pose and each landmark's first
+  // estimate. Association (the Mahalanobis gate, JCBB's joint test) and augmentation always use
+  // the current estimates. FEJ assumes a motion p' = p + R(θ)·δ(u), θ' = θ + Δθ(u) (car-like,
+  // unicycle, odometry models).
+  JacobianEstimates jacobians = JacobianEstimates::kCurrent;
 
   bool known_association() const { return association_method == AssociationMethod::kKnown; }
 };
@@ -98,6 +106,8 @@ class EkfSlam final : public LandmarkSlamFilter {
   // covariance downdate stays deferred until ApplyPendingDowndate(), Predict() or Update();
   // reads in between see the updated covariance.
   void UpdateLandmark(int landmark, const PointObservation& obs);
+  // The innovation, Jacobians and noise UpdateLandmark() would apply (see params().jacobians).
+  Linearisation UpdateLinearisation(int landmark, const PointObservation& obs) const;
   void ApplyPendingDowndate() { ekf_.ApplyPendingDowndate(); }
   // Adds a landmark initialised from `obs` by the inverse sensor model (SPEC S2, Eq. 8).
   int AddLandmark(const PointObservation& obs);
@@ -134,6 +144,8 @@ class EkfSlam final : public LandmarkSlamFilter {
   double PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
                        const Eigen::Matrix3d& P_pose) const;
   MatchedObservation Matched(int landmark, const PointObservation& obs) const;
+  // The observation model of the updates: point_model_, or fej_model_ with kFirstEstimates.
+  const ObservationModel& UpdateModel() const;
   // Where a failed health check happened: "EkfSlam after update 5 (prediction 4, 12
   // landmarks)", "EkfSlam after prediction 4 (…)" or "EkfSlam at output (…)".
   enum class HealthStep { kUpdate, kPrediction, kOutput };
@@ -155,6 +167,7 @@ class EkfSlam final : public LandmarkSlamFilter {
   BlockEkf ekf_;
   int point_kind_ = -1;
   PointLandmarkModel point_model_;
+  FirstEstimatesPointModel fej_model_;  // its prior pose is kept with kCurrent too
   std::vector<int> landmark_blocks_;
   std::vector<LandmarkId> source_ids_;
   std::unordered_map<LandmarkId, int> index_of_id_;
