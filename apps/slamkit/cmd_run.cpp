@@ -79,7 +79,8 @@ IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunPara
   FastSlamParams fastslam = FastSlamParamsFor(kind, o.particles, params.ekf);
   fastslam.new_landmark_test = params.fastslam.new_landmark_test;
   fastslam.gate_chi2 = params.fastslam.gate_chi2.value_or(fastslam.gate_chi2);
-  fastslam.new_landmark_chi2 = params.fastslam.new_landmark_chi2.value_or(fastslam.new_landmark_chi2);
+  fastslam.new_landmark_chi2 =
+      params.fastslam.new_landmark_chi2.value_or(fastslam.new_landmark_chi2);
   fastslam.threads = o.threads > 0 ? o.threads : UsableCpuCount();
   FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
                   std::make_unique<RelativePointModel>());

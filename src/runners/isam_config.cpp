@@ -35,7 +35,8 @@ void ReadAssociation(const Section& s, EkfSlamParams* ekf) {
 const std::vector<std::string> kNewLandmarkTests = {"likelihood", "mahalanobis"};
 
 void ReadFastSlam(const Section& parent, IsamFastSlamAssociation* f) {
-  const Section s = parent.Child("fastslam", {"new_landmark_test", "gate_chi2", "new_landmark_chi2"});
+  const Section s =
+      parent.Child("fastslam", {"new_landmark_test", "gate_chi2", "new_landmark_chi2"});
   f->new_landmark_test = static_cast<NewLandmarkTest>(config::ReadChoice(
       s, "new_landmark_test", kNewLandmarkTests, static_cast<int>(f->new_landmark_test)));
   for (const auto& [key, value] : {std::pair{"gate_chi2", &f->gate_chi2},

@@ -187,6 +187,31 @@ TEST(FastSlamMemory, ResamplingSharesTheParticlesMaps) {
   EXPECT_THROW(slam.AddLandmarks(prior), std::logic_error);
 }
 
+// The new-landmark test. A landmark known only to 5 m (σ) is predicted so broadly that the density
+// of even an exact sighting stays below p0 (Montemerlo's test creates a duplicate), while its
+// squared Mahalanobis distance is 0 (the EKF's test matches it); with that test a sighting
+// between the gates is dropped and one beyond new_landmark_chi2 is new.
+TEST(FastSlamAssociation, NewLandmarkTestsDecideByDensityOrByDistance) {
+  const auto decide = [](NewLandmarkTest test, double range_m) {
+    FastSlamParams params;
+    params.particles = 1;
+    params.new_landmark_test = test;
+    FastSlam slam = MakeFilter(params);
+    slam.Reset(Pose2());
+    LandmarkMap prior;
+    prior.landmarks.push_back(
+        {kNoLandmark, Eigen::Vector2d(5.0, 0.0), 25.0 * Eigen::Matrix2d::Identity()});
+    slam.AddLandmarks(prior);
+    const PointObservation obs = RangeBearingObs(range_m, 0.0);
+    return slam.Update({&obs, 1}).at(0).kind;
+  };
+  using Kind = AssociationDecision::Kind;
+  EXPECT_EQ(decide(NewLandmarkTest::kLikelihood, 5.0), Kind::kNew);
+  EXPECT_EQ(decide(NewLandmarkTest::kMahalanobis, 5.0), Kind::kMatched);
+  EXPECT_EQ(decide(NewLandmarkTest::kMahalanobis, 22.0), Kind::kDropped);  // d² ≈ 17² / 25 = 11.6
+  EXPECT_EQ(decide(NewLandmarkTest::kMahalanobis, 25.0), Kind::kNew);      // d² ≈ 16
+}
+
 // Without association given, a re-sighting of a landmark matches it and a far sighting starts a
 // new one; indexes are stable and every decision names a landmark of Map().
 TEST(FastSlamAssociation, MaximumLikelihoodMatchesAndCreates) {
