@@ -13,8 +13,6 @@
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/filters/fastslam.hpp"
 #include "slamkit/io/isam_reader.hpp"
-#include "slamkit/models/odometry.hpp"
-#include "slamkit/models/relative_point.hpp"
 #include "slamkit/report/figures.hpp"
 #include "slamkit/runners/filter_choice.hpp"
 #include "slamkit/runners/isam_config.hpp"
@@ -77,14 +75,8 @@ IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunPara
   const FilterKind kind = ParseFilterKind(o.filter);
   if (kind == FilterKind::kEkf) return RunEkfSlamOnIsam(log, params);
   FastSlamParams fastslam = FastSlamParamsFor(kind, o.particles, params.ekf);
-  fastslam.new_landmark_test = params.fastslam.new_landmark_test;
-  fastslam.gate_chi2 = params.fastslam.gate_chi2.value_or(fastslam.gate_chi2);
-  fastslam.new_landmark_chi2 =
-      params.fastslam.new_landmark_chi2.value_or(fastslam.new_landmark_chi2);
   fastslam.threads = o.threads > 0 ? o.threads : UsableCpuCount();
-  FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
-                  std::make_unique<RelativePointModel>());
-  return RunFilterOnIsam(filter, log, params, fastslam.known_association);
+  return RunFastSlamOnIsam(log, params, fastslam);
 }
 
 int RunIsamCommand(const RunOptions& o) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <set>
 
@@ -158,6 +159,18 @@ IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) 
   EkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
                std::make_unique<RelativePointModel>());
   return RunFilterOnIsam(slam, log, params, params.ekf.known_association());
+}
+
+IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
+                                FastSlamParams fastslam) {
+  const AssociationParams& ekf = params.ekf.association;
+  fastslam.known_association = params.ekf.known_association();
+  fastslam.new_landmark_test = params.fastslam.new_landmark_test;
+  fastslam.gate_chi2 = params.fastslam.gate_chi2.value_or(ekf.gate_chi2);
+  fastslam.new_landmark_chi2 = params.fastslam.new_landmark_chi2.value_or(ekf.new_landmark_chi2);
+  FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
+                  std::make_unique<RelativePointModel>());
+  return RunFilterOnIsam(filter, log, params, fastslam.known_association);
 }
 
 IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,

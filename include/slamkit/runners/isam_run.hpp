@@ -61,6 +61,11 @@ struct IsamRunResult {
 
 // EKF-SLAM (params.ekf) with the odometry and relative-point models.
 IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params);
+// FastSLAM (`fastslam`: proposal, particles, threads; its association is set here) with the same
+// models: known association as params.ekf says, otherwise each particle's by
+// params.fastslam.new_landmark_test with params.fastslam's gates, the EKF's where unset.
+IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
+                                FastSlamParams fastslam);
 // Any point-landmark filter whose motion model takes the file's increments (dx, dy, dθ) as its
 // control and whose sensor takes the sightings as they are (x forward, y left); the file's ids
 // are given to it only with `known_association`. params.ekf is used for the merged reference only.
