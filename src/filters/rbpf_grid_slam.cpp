@@ -35,7 +35,10 @@ bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
     return true;
   }
   const Pose2 delta = last_update_odometry_.Between(scan.odometry);
-  if (delta.translation().norm() < params_.linear_update_m &&
+  const Pose2 step = scans_[scan_index - 1].odometry.Between(scan.odometry);
+  const bool dense = step.translation().norm() < params_.tracking_max_step_m &&
+                     std::abs(step.theta()) < params_.tracking_max_step_rad;
+  if (dense && delta.translation().norm() < params_.linear_update_m &&
       std::abs(delta.theta()) < params_.angular_update_rad) {
     pending_.push_back(
         {scan_index, params_.tracking_mode != TrackingMode::kOff
@@ -111,9 +114,26 @@ void RbpfGridSlam::MoveAndWeigh(const LaserScan& scan, const Pose2& delta) {
   typical_score_fraction_ = points.ends.empty() ? 0.0 : total / (n * double(points.ends.size()));
 }
 
-// Samples particle i's motion, refines it by matching the scan against its own map, weighs it by
-// the scan likelihood at the refined pose (and by the extra factor, if any); returns the match's
-// score.
+// Particle i's match at an update, from the start RbpfGridSlamParams::sampled_start_fraction
+// picks for it: the motion draw `sampled` or the prediction `previous` ⊕ `delta`.
+MatchResult RbpfGridSlam::MatchFromStart(const GridMapView& map, const ScanPoints& points,
+                                         const Pose2& previous, const Pose2& delta,
+                                         const Pose2& sampled, const ScanMatcherParams& matcher,
+                                         Rng& rng) const {
+  const double f = params_.sampled_start_fraction;
+  const bool from_prediction = f <= 0.0 || (f < 1.0 && rng.Uniform() >= f);
+  if (!from_prediction) return MatchScan(map, points, sampled, matcher);
+  ScanMatcherParams swept = matcher;
+  swept.heading_sweep_rad =
+      params_.heading_sweep_sigmas * OdometryNoiseSigmas(delta, params_.motion).z();
+  const MatchResult match = MatchScan(map, points, previous.Compose(delta), swept);
+  if (match.constraints.unconstrained == 0) return match;
+  return MatchScan(map, points, sampled, matcher);
+}
+
+// Samples particle i's motion, refines it by matching the scan against its own map (SPEC S4;
+// Grisetti et al. 2007, Table 1), weighs it by the scan likelihood at the refined pose (and by
+// the extra factor, if any); returns the match's score.
 double RbpfGridSlam::MoveParticle(int i, const ScanPoints& points, const Pose2& delta,
                                   const ScanMatcherParams& matcher) {
   GridParticle& p = particles_[i];
@@ -121,7 +141,7 @@ double RbpfGridSlam::MoveParticle(int i, const ScanPoints& points, const Pose2& 
   const GridMapView map = p.View();
   const Pose2 previous = p.pose;
   const Pose2 predicted = SampleOdometryMotion(previous, delta, params_.motion, rng);
-  const MatchResult match = MatchScan(map, points, predicted, matcher);
+  const MatchResult match = MatchFromStart(map, points, previous, delta, predicted, matcher, rng);
   double log_likelihood = 0.0;
   if (!match.accepted) {
     p.pose = predicted;

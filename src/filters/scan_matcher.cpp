@@ -225,6 +225,27 @@ void KeepGuessWhereUnconstrained(const GridMapView& grid, const ScanPoints& poin
   best->quality = EvaluatePose(grid, points, best->pose, params);
 }
 
+// The heading of `initial` turned by the multiple of the sweep's step that scores best (the
+// smallest turn on ties), scored as the coarse pass scores.
+Pose2 SweepHeading(const GridMapView& grid, const ScanPoints& coarse_points, const Pose2& initial,
+                   const ScanMatcherParams& coarse) {
+  const int steps = int(coarse.heading_sweep_rad / coarse.heading_sweep_step_rad);
+  Pose2 best = initial;
+  double best_score = EvaluatePose(grid, coarse_points, initial, coarse).score;
+  for (int k = 1; k <= steps; ++k) {
+    for (double sign : {-1.0, 1.0}) {
+      const Pose2 turned(initial.x(), initial.y(),
+                         initial.theta() + sign * k * coarse.heading_sweep_step_rad);
+      const double score = EvaluatePose(grid, coarse_points, turned, coarse).score;
+      if (score > best_score) {
+        best = turned;
+        best_score = score;
+      }
+    }
+  }
+  return best;
+}
+
 // The coarse pass (if any) from `initial`: where the fine pass should start.
 Pose2 CoarseStart(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                   const ScanMatcherParams& params) {
@@ -233,7 +254,11 @@ Pose2 CoarseStart(const GridMapView& grid, const ScanPoints& points, const Pose2
   coarse.search_cells = params.coarse_search_cells;
   coarse.score_sigma_m = params.coarse_score_sigma_m;
   coarse.refinements = params.coarse_refinements;
-  return HillClimb(grid, EveryNth(points, params.coarse_beam_stride), initial, coarse).pose;
+  const ScanPoints coarse_points = EveryNth(points, params.coarse_beam_stride);
+  const Pose2 start = params.heading_sweep_rad > 0.0
+                          ? SweepHeading(grid, coarse_points, initial, coarse)
+                          : initial;
+  return HillClimb(grid, coarse_points, start, coarse).pose;
 }
 
 // The widened search: the whole climb (coarse and fine) from each of the other headings; the best

@@ -54,6 +54,8 @@ void ReadMatcher(const Section& s, ScanMatcherParams* m) {
   s.Read("coarse_score_sigma_m", &m->coarse_score_sigma_m, Bound::kPositive);
   s.Read("coarse_beam_stride", &m->coarse_beam_stride, 1);
   s.Read("coarse_refinements", &m->coarse_refinements, 0);
+  s.Read("heading_sweep_rad", &m->heading_sweep_rad, Bound::kNonNegative);
+  s.Read("heading_sweep_step_rad", &m->heading_sweep_step_rad, Bound::kPositive);
   s.Read("widen_below_score_fraction", &m->widen_below_score_fraction, Bound::kNonNegative);
   s.Read("widen_heading_step_rad", &m->widen_heading_step_rad, Bound::kPositive);
   s.Read("widen_heading_starts", &m->widen_heading_starts, 0);
@@ -64,11 +66,26 @@ void ReadMatcher(const Section& s, ScanMatcherParams* m) {
   s.Read("max_normal_spread", &c.max_normal_spread, Bound::kNonNegative);
 }
 
+// A limit that may be infinite (none): null in YAML, as metrics.json writes it (JSON has no
+// infinity).
+void ReadOptionalLimit(const Section& s, const std::string& key, double* value) {
+  if (s.Has(key) && s.Get(key).IsNull()) {
+    *value = std::numeric_limits<double>::infinity();
+  } else {
+    s.Read(key, value, Bound::kNonNegative);
+  }
+}
+
+nlohmann::json LimitJson(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
 const std::vector<std::string> kMatcherKeys = {
     "beam_stride", "search_cells", "score_sigma_m", "likelihood_sigma_m", "linear_step_m",
     "angular_step_rad", "refinements", "min_score_fraction", "prior_sigma_xy_m",
     "prior_sigma_theta_rad", "coarse_pass", "coarse_search_cells", "coarse_score_sigma_m",
-    "coarse_beam_stride", "coarse_refinements", "widen_below_score_fraction",
+    "coarse_beam_stride", "coarse_refinements", "heading_sweep_rad", "heading_sweep_step_rad",
+    "widen_below_score_fraction",
     "widen_heading_step_rad", "widen_heading_starts", "min_information_ratio", "normal_neighbours",
     "normal_radius_m", "max_normal_spread"};
 
@@ -83,6 +100,8 @@ nlohmann::json MatcherJson(const ScanMatcherParams& m) {
           {"coarse_score_sigma_m", m.coarse_score_sigma_m},
           {"coarse_beam_stride", m.coarse_beam_stride},
           {"coarse_refinements", m.coarse_refinements},
+          {"heading_sweep_rad", m.heading_sweep_rad},
+          {"heading_sweep_step_rad", m.heading_sweep_step_rad},
           {"widen_below_score_fraction", m.widen_below_score_fraction},
           {"widen_heading_step_rad", m.widen_heading_step_rad},
           {"widen_heading_starts", m.widen_heading_starts},
@@ -117,9 +136,9 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
                   {"particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
                    "likelihood_gain", "motion", "usable_range_m", "misses_spare_scan_hits",
                    "no_return_ray_length_m", "matcher",
-                   "widen_below_typical_score", "proposal",
+                   "widen_below_typical_score", "proposal", "sampled_start_fraction", "heading_sweep_sigmas",
                    "gaussian", "tracking_mode", "tracking", "tracking_max_correction_m",
-                   "tracking_max_correction_rad", "grid"});
+                   "tracking_max_correction_rad", "tracking_max_step_m", "tracking_max_step_rad", "grid"});
   RbpfGridSlamParams p = defaults;
   s.Read("particles", &p.particles, 1);
   s.Read("seed", &p.seed);
@@ -137,15 +156,13 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   m.Read("stt", &p.motion.stt, Bound::kNonNegative);
   s.Read("usable_range_m", &p.usable_range_m, Bound::kPositive);
   s.Read("misses_spare_scan_hits", &p.misses_spare_scan_hits);
-  // null (as metrics.json writes infinity): up to the usable range.
-  if (s.Has("no_return_ray_length_m") && s.Get("no_return_ray_length_m").IsNull()) {
-    p.no_return_ray_length_m = std::numeric_limits<double>::infinity();
-  } else {
-    s.Read("no_return_ray_length_m", &p.no_return_ray_length_m, Bound::kNonNegative);
-  }
+  ReadOptionalLimit(s, "no_return_ray_length_m", &p.no_return_ray_length_m);
   ReadMatcher(s.Child("matcher", kMatcherKeys), &p.matcher);
   s.Read("widen_below_typical_score", &p.widen_below_typical_score, Bound::kNonNegative);
   p.proposal = ProposalOf(config::ReadChoice(s, "proposal", kProposals, ProposalIndex(p.proposal)));
+  s.Read("sampled_start_fraction", &p.sampled_start_fraction, Bound::kNonNegative);
+  if (p.sampled_start_fraction > 1.0) s.Fail("sampled_start_fraction", "must be at most 1");
+  s.Read("heading_sweep_sigmas", &p.heading_sweep_sigmas, Bound::kNonNegative);
   const Section g = s.Child("gaussian", {"step_xy_m", "step_theta_rad"});
   g.Read("step_xy_m", &p.gaussian.step_xy_m, Bound::kPositive);
   g.Read("step_theta_rad", &p.gaussian.step_theta_rad, Bound::kPositive);
@@ -154,6 +171,8 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   ReadMatcher(s.Child("tracking", kMatcherKeys), &p.tracking);
   s.Read("tracking_max_correction_m", &p.tracking_max_correction_m, Bound::kNonNegative);
   s.Read("tracking_max_correction_rad", &p.tracking_max_correction_rad, Bound::kNonNegative);
+  ReadOptionalLimit(s, "tracking_max_step_m", &p.tracking_max_step_m);
+  ReadOptionalLimit(s, "tracking_max_step_rad", &p.tracking_max_step_rad);
   ReadGrid(s.Child("grid", {"resolution_m", "log_odds_hit", "log_odds_miss", "log_odds_min",
                             "log_odds_max", "max_extent_m", "max_cells"}),
            &p.grid);
@@ -173,19 +192,20 @@ nlohmann::json GridParamsJson(const RbpfGridSlamParams& p) {
                       {"stt", p.motion.stt}}},
           {"usable_range_m", p.usable_range_m},
           {"misses_spare_scan_hits", p.misses_spare_scan_hits},
-          // null: the usable range (JSON has no infinity)
-          {"no_return_ray_length_m", std::isfinite(p.no_return_ray_length_m)
-                                         ? nlohmann::json(p.no_return_ray_length_m)
-                                         : nlohmann::json(nullptr)},
+          {"no_return_ray_length_m", LimitJson(p.no_return_ray_length_m)},
           {"matcher", MatcherJson(p.matcher)},
           {"widen_below_typical_score", p.widen_below_typical_score},
           {"proposal", kProposals[ProposalIndex(p.proposal)]},
+          {"sampled_start_fraction", p.sampled_start_fraction},
+          {"heading_sweep_sigmas", p.heading_sweep_sigmas},
           {"gaussian", {{"step_xy_m", p.gaussian.step_xy_m},
                         {"step_theta_rad", p.gaussian.step_theta_rad}}},
           {"tracking_mode", kTracking[TrackingIndex(p.tracking_mode)]},
           {"tracking", MatcherJson(p.tracking)},
           {"tracking_max_correction_m", p.tracking_max_correction_m},
           {"tracking_max_correction_rad", p.tracking_max_correction_rad},
+          {"tracking_max_step_m", LimitJson(p.tracking_max_step_m)},
+          {"tracking_max_step_rad", LimitJson(p.tracking_max_step_rad)},
           {"grid", {{"resolution_m", g.resolution_m}, {"log_odds_hit", g.log_odds_hit},
                     {"log_odds_miss", g.log_odds_miss}, {"log_odds_min", g.log_odds_min},
                     {"log_odds_max", g.log_odds_max}, {"max_extent_m", g.max_extent_m},

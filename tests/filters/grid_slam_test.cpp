@@ -195,6 +195,7 @@ TEST(RbpfGridSlam, SecondLayerIsKeptByTheParticles) {
   const std::vector<LaserScan> log = LoopLog(&truth);
   RbpfGridSlamParams params = UpdatesEvery(0.5, 0.3);
   params.particles = 6;
+  params.resampling.threshold = 1.0;  // resample at every update: copies must keep the layer
   RbpfGridSlam slam(params);
   slam.ProcessScan(log[0]);
   auto layer = std::make_shared<OccupancyGrid>(slam.BestMap());

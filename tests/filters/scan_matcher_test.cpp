@@ -225,5 +225,26 @@ TEST(ScanMatcher, WidenedSearchRecoversAHeadingTheClimbCannot) {
   EXPECT_GE(failed_plain, 1) << "the plain climb recovers them all: the test is moot";
 }
 
+// The heading sweep scores the coarse pass at headings around the guess before climbing: the
+// same misjudged turn is found at the cost of one coarse score per heading.
+TEST(ScanMatcher, HeadingSweepRecoversAHeadingTheClimbCannot) {
+  const OccupancyGrid grid = RoomMap();
+  ScanMatcherParams params;
+  const double offset = 0.5;
+  int recovered = 0, failed_plain = 0;
+  for (const Pose2& truth : {Pose2(0.5, 0.3, 0.2), Pose2(-2.0, -1.0, -1.0), Pose2(2, 2.5, 2.5)}) {
+    const ScanPoints points = PrepareScan(RoomScan(truth), 30.0, params);
+    const Pose2 guess(truth.x(), truth.y(), truth.theta() + offset);
+    params.heading_sweep_rad = 0.0;
+    const MatchResult plain = MatchScan(grid, points, guess, params);
+    params.heading_sweep_rad = 0.6;
+    const MatchResult swept = MatchScan(grid, points, guess, params);
+    failed_plain += std::abs(WrapAngle(plain.pose.theta() - truth.theta())) > 0.02 ? 1 : 0;
+    recovered += std::abs(WrapAngle(swept.pose.theta() - truth.theta())) < 0.01 ? 1 : 0;
+  }
+  EXPECT_EQ(recovered, 3);
+  EXPECT_GE(failed_plain, 1) << "the plain climb recovers them all: the test is moot";
+}
+
 }  // namespace
 }  // namespace slamkit

@@ -65,7 +65,9 @@ TEST_F(GridConfigFile, MistakesNameTheFileLineAndKey) {
       {"grid: {resolution_m: 0}\n", "key 'grid.resolution_m': must be > 0"},
       {"grid: {log_odds_min: 5}\n", "key 'grid.log_odds_min': must be below log_odds_max"},
       {"matcher: {beam_stride: fast}\n", "key 'matcher.beam_stride'"},
-      {"usable_range: 30\n", "usable_range"}};
+      {"usable_range: 30\n", "usable_range"},
+      {"sampled_start_fraction: 1.5\n", "key 'sampled_start_fraction': must be at most 1"},
+      {"heading_sweep_sigmas: -1\n", "key 'heading_sweep_sigmas': must be >= 0"}};
   for (const Case& c : cases) {
     const std::string message =
         testing::InputErrorOf([&] { LoadGridConfig(WriteFile("g.yaml", c.yaml)); });

@@ -35,6 +35,12 @@ struct ScanMatcherParams {
   double coarse_score_sigma_m = 0.15;
   int coarse_beam_stride = 3;
   int coarse_refinements = 5;
+  // Before the coarse pass, the coarse score is swept over headings initial ± k·step within this
+  // half-width, and the climb starts from the best (the initial heading on ties): a turn that
+  // odometry misjudged by more than the climb can recover (CSAIL's odometry is 12° off on one
+  // step in ten) is found at the cost of one score per heading. Zero switches it off.
+  double heading_sweep_rad = 0.0;
+  double heading_sweep_step_rad = 0.02;
   // A match scoring below this fraction of its beams is retried from headings
   // ±k·widen_heading_step_rad (k = 1..widen_heading_starts) around the guess, and the best climb
   // kept: a turn that odometry misjudged by more than the climb can recover leaves the first
