@@ -136,9 +136,10 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
                   {"particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
                    "likelihood_gain", "motion", "usable_range_m", "misses_spare_scan_hits",
                    "no_return_ray_length_m", "matcher",
-                   "widen_below_typical_score", "proposal", "sampled_start_fraction", "heading_sweep_sigmas",
-                   "gaussian", "tracking_mode", "tracking", "tracking_max_correction_m",
-                   "tracking_max_correction_rad", "tracking_max_step_m", "tracking_max_step_rad", "grid"});
+                   "widen_below_typical_score", "proposal", "sampled_start_fraction",
+                   "heading_sweep_sigmas", "gaussian", "tracking_mode", "tracking",
+                   "tracking_max_correction_m", "tracking_max_correction_rad",
+                   "tracking_max_step_m", "tracking_max_step_rad", "grid"});
   RbpfGridSlamParams p = defaults;
   s.Read("particles", &p.particles, 1);
   s.Read("seed", &p.seed);
