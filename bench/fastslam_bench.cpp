@@ -31,7 +31,7 @@ namespace {
 
 constexpr int kParticles = 100;
 constexpr int kSightings = 5;
-constexpr std::uint64_t kSeed = 20240611;
+constexpr std::uint64_t kFastSlamBenchSeed = 20240611;
 
 // N landmarks on a square grid of 2 m spacing, offset from the origin where the robot stays.
 LandmarkMap GridMap(int n) {
@@ -80,7 +80,7 @@ void BM_FastSlamStep(benchmark::State& state) {
   FastSlam slam(params, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>());
   slam.Reset(Pose2());
   slam.AddLandmarks(map);
-  Rng rng(kSeed);
+  Rng rng(kFastSlamBenchSeed);
   for (auto _ : state) {
     state.PauseTiming();
     const std::vector<PointObservation> scan = Scan(map, sensor, rng);
@@ -123,9 +123,9 @@ void BM_FlatMapStep(benchmark::State& state) {
   FlatParticle first;
   for (const MappedLandmark& m : map.landmarks) first.landmarks.push_back({m.position_m, m.covariance, 1});
   ParticleSet<FlatParticle> particles(kParticles, first);
-  ParticleStreams streams(kSeed, kParticles);
+  ParticleStreams streams(kFastSlamBenchSeed, kParticles);
   const ResamplingParams always{2.0, ResamplingScheme::kSystematic};
-  Rng rng(kSeed);
+  Rng rng(kFastSlamBenchSeed);
   int step = 0;
   for (auto _ : state) {
     state.PauseTiming();

@@ -24,7 +24,7 @@
 namespace slamkit {
 namespace {
 
-constexpr std::uint64_t kSeed = 20240611;
+constexpr std::uint64_t kSelectionBenchSeed = 20240611;
 constexpr int kMatched = 10;  // sightings per step, unless a benchmark varies them
 
 // A filter at the origin holding `landmarks` landmarks 1–30 m away in every direction, after a
@@ -32,7 +32,7 @@ constexpr int kMatched = 10;  // sightings per step, unless a benchmark varies t
 struct MappedFilter {
   MappedFilter(int landmarks, int matched)
       : ekf(3 + 2 * landmarks), kind(ekf.RegisterKind({2, {}, false})), model(sensor, kind, 5.0) {
-    Rng rng(kSeed);
+    Rng rng(kSelectionBenchSeed);
     ekf.AddBlock(kPoseKind, Pose2().vector(), Eigen::Vector3d(1e-4, 1e-4, 1e-6).asDiagonal());
     const Eigen::Matrix2d R = sensor.NoiseCovariance();
     const OdometryModel odometry;

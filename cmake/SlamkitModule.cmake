@@ -2,6 +2,7 @@
 # build-tree only): none of it reaches the interface of the installed, exported targets.
 function(slamkit_target_options target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror -Wpedantic)
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ${SLAMKIT_UNITY_BUILD})
   if(SLAMKIT_NATIVE)
     # Eigen's kernels are where the EKF spends its time; with AVX2 and FMA the covariance
     # downdate runs 2-3x faster than with the SSE2 baseline. PRIVATE on purpose: an installed

@@ -11,8 +11,6 @@ namespace slamkit {
 namespace {
 
 constexpr const char* kFieldNames[] = {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"};
-// z, roll and pitch of a planar relation: zero up to rounding.
-constexpr double kOutOfPlaneTolerance = 1e-6;
 
 PoseRelation ParseRelation(const text::Fields& fields) {
   fields.Expect(std::size(kFieldNames), kFieldNames);
@@ -21,7 +19,7 @@ PoseRelation ParseRelation(const text::Fields& fields) {
     values[i] = fields.Number(i, {kFieldNames[i]});
   }
   for (std::size_t i : {4, 5, 6}) {
-    if (std::abs(values[i]) > kOutOfPlaneTolerance) {
+    if (std::abs(values[i]) > text::kOutOfPlaneTolerance) {
       fields.Fail({kFieldNames[i]},
                   fmt::format("must be 0 in a planar relation ('{}')", fields.Text(i)));
     }

@@ -18,6 +18,9 @@
 
 namespace slamkit::text {
 
+// z, roll and pitch (or qx, qy) of a planar pose or relation: zero up to rounding.
+inline constexpr double kOutOfPlaneTolerance = 1e-6;
+
 // The longest line a reader accepts: far beyond any record (a 1081-beam scan is ~10 KB).
 inline constexpr std::size_t kMaxLineBytes = std::size_t{64} << 20;
 

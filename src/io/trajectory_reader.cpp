@@ -14,7 +14,6 @@ constexpr const char* kPlanarNames[] = {"t", "x", "y", "theta"};
 constexpr const char* kTumNames[] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw"};
 // Larger than any building or campus, small enough that squares and alignment stay exact.
 constexpr double kMaxMagnitude = 1e6;
-constexpr double kOutOfPlaneTolerance = 1e-6;
 constexpr double kUnitQuaternionTolerance = 1e-3;
 
 // Field i: finite, and of magnitude at most kMaxMagnitude unless it is the time (field 0: Unix
@@ -32,7 +31,7 @@ StampedPose ParseTum(const text::Fields& fields) {
   double v[std::size(kTumNames)];
   for (std::size_t i = 0; i < std::size(kTumNames); ++i) v[i] = Bounded(fields, i, kTumNames[i]);
   for (std::size_t i : {3, 4, 5}) {
-    if (std::abs(v[i]) > kOutOfPlaneTolerance) {
+    if (std::abs(v[i]) > text::kOutOfPlaneTolerance) {
       fields.Fail({kTumNames[i]}, fmt::format("must be 0 in a planar pose ('{}')", fields.Text(i)));
     }
   }

@@ -3,7 +3,6 @@
 #include <mgl2/mgl.h>
 
 #include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -13,7 +12,6 @@
 namespace slamkit {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Layout as the path figure's (tuned by eye on 1200×1000 images).
 constexpr internal::Region kMapRegion{-0.07, 1.1, -0.05, 1.06};
@@ -24,7 +22,7 @@ internal::XyData SegmentPolylines(const std::vector<Segment2>& segments) {
   for (const Segment2& s : segments) {
     xy.Add(s.a.x(), s.a.y());
     xy.Add(s.b.x(), s.b.y());
-    xy.Add(kNaN, kNaN);
+    xy.Break();
   }
   return xy;
 }
@@ -84,7 +82,7 @@ internal::Box SetViewRanges(mglGraph& gr, const LineMapLayers& layers) {
   return internal::SetEqualScaleRanges(gr, rx, ry);
 }
 
-struct Layer {
+struct LineLayer {
   const internal::XyData* xy;
   const char* pen;
   const char* legend;
@@ -93,13 +91,13 @@ struct Layer {
 // Bottom to top: walls, points, odometry, truth, estimate, lines, corners. False when nothing
 // was drawn.
 bool DrawLineMapLayers(mglGraph& gr, const LineMapLayers& layers) {
-  const Layer drawn[] = {
+  const LineLayer drawn[] = {
       {&layers.walls, "H-1", "true walls"},        {&layers.points, "{c7} .", "scan points"},
       {&layers.odometry, "m-1", "odometry"},       {&layers.truth, "k-2", "true path"},
       {&layers.estimate, "b-2", "estimated path"}, {&layers.lines, "r-5", "mapped lines"},
       {&layers.corners, "g #o", "corners"}};
   bool any = false;
-  for (const Layer& layer : drawn) {
+  for (const LineLayer& layer : drawn) {
     if (layer.xy->Empty()) continue;
     gr.Plot(mglData(layer.xy->x), mglData(layer.xy->y), layer.pen);
     gr.AddLegend(layer.legend, layer.pen);

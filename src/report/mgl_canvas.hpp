@@ -67,6 +67,11 @@ struct XyData {
     x.push_back(px);
     y.push_back(py);
   }
+  // Ends the current polyline: MathGL draws no segment across a NaN point.
+  void Break() {
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    Add(kNaN, kNaN);
+  }
   bool Empty() const { return x.empty(); }
 };
 

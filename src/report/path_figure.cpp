@@ -6,7 +6,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -33,7 +32,6 @@ using internal::SuppressMglWarnings;
 using internal::WriteAtomically;
 using internal::XyData;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kEllipsePoints = 36;
 constexpr double kMarkerSize = 1.5;  // of PathFigureData::markers_m, MathGL's default being 1
 
@@ -57,7 +55,7 @@ XyData EllipsePolylines(const LandmarkMap& map, double sigma) {
         CovarianceEllipse(l.position_m, l.covariance, sigma, kEllipsePoints);
     for (const Eigen::Vector2d& p : ring) xy.Add(p.x(), p.y());
     xy.Add(ring.front().x(), ring.front().y());
-    xy.Add(kNaN, kNaN);
+    xy.Break();
   }
   return xy;
 }
@@ -102,7 +100,7 @@ Box SetMapRanges(mglGraph& gr, const MapLayers& layers) {
   return SetEqualScaleRanges(gr, rx, ry);
 }
 
-struct Layer {
+struct PathLayer {
   const XyData* xy;
   const char* pen;
   std::string legend;
@@ -114,13 +112,13 @@ bool DrawMapLayers(mglGraph& gr, const MapLayers& layers, const PathFigureData& 
   const double sigma = data.ellipse_sigma;
   char ellipse_label[64];
   std::snprintf(ellipse_label, sizeof(ellipse_label), "%g\\sigma{} ellipses", sigma);
-  const Layer drawn[] = {{&layers.ellipses, "{r6}-", ellipse_label},
+  const PathLayer drawn[] = {{&layers.ellipses, "{r6}-", ellipse_label},
                          {&layers.truth, "k-2", "true path"},
                          {&layers.estimate, "b-2", "estimated path"},
                          {&layers.landmarks, "r .", "estimated landmarks"},
                          {&layers.true_landmarks, "g +", "true landmarks"},
                          {&layers.markers, "m #o", Escaped(data.markers_label)}};
-  for (const Layer& layer : drawn) {
+  for (const PathLayer& layer : drawn) {
     if (layer.xy->Empty()) continue;
     // The few marked points must stand out among the landmarks: larger circles.
     if (layer.xy == &layers.markers) gr.SetMarkSize(kMarkerSize);

@@ -30,13 +30,13 @@ std::string Cell(double v, const char* format = "{:.4f}") {
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "";
 }
 
-struct Spread {
+struct RunSpread {
   int count = 0;
   double mean = kNaN, min = kNaN, max = kNaN;
 };
 
-Spread SpreadOf(const std::vector<const SuiteRunRecord*>& runs, const std::string& key) {
-  Spread s;
+RunSpread RunSpreadOf(const std::vector<const SuiteRunRecord*>& runs, const std::string& key) {
+  RunSpread s;
   double sum = 0.0;
   for (const SuiteRunRecord* r : runs) {
     const double v = Value(*r, key);
@@ -50,7 +50,7 @@ Spread SpreadOf(const std::vector<const SuiteRunRecord*>& runs, const std::strin
   return s;
 }
 
-std::string SpreadCell(const Spread& s) {
+std::string SpreadCell(const RunSpread& s) {
   if (s.count == 0) return "";
   if (s.count == 1) return fmt::format("{:.4f}", s.mean);
   return fmt::format("{:.4f} ({:.4f}–{:.4f})", s.mean, s.min, s.max);
@@ -105,7 +105,7 @@ nlohmann::json SuiteSummaryJson(const std::vector<SuiteRunRecord>& runs) {
                           {"failed", failed[i]}};
     for (const char* key : {"ate_rmse_m", "relations_trans_mean_m", "odometry_ate_rmse_m",
                             "odometry_relations_trans_mean_m", "wall_time_s", "peak_rss_mib"}) {
-      const Spread s = SpreadOf(logs[i].second, key);
+      const RunSpread s = RunSpreadOf(logs[i].second, key);
       if (s.count > 0) log[key] = {{"mean", s.mean}, {"min", s.min}, {"max", s.max}};
     }
     out["logs"].push_back(log);
@@ -144,12 +144,12 @@ std::string PerLogTable(const std::vector<SuiteRunRecord>& runs) {
     const auto& [name, done] = logs[i];
     md += fmt::format("| {} | {}{} | {} | {} | {} | {} | {} | {} |\n", name, done.size(),
                       failed[i] > 0 ? fmt::format(" ({} failed)", failed[i]) : "",
-                      SpreadCell(SpreadOf(done, "ate_rmse_m")),
-                      Cell(SpreadOf(done, "odometry_ate_rmse_m").mean),
-                      SpreadCell(SpreadOf(done, "relations_trans_mean_m")),
-                      Cell(SpreadOf(done, "odometry_relations_trans_mean_m").mean),
-                      Cell(SpreadOf(done, "wall_time_s").mean, "{:.1f}"),
-                      Cell(SpreadOf(done, "peak_rss_mib").max, "{:.0f}"));
+                      SpreadCell(RunSpreadOf(done, "ate_rmse_m")),
+                      Cell(RunSpreadOf(done, "odometry_ate_rmse_m").mean),
+                      SpreadCell(RunSpreadOf(done, "relations_trans_mean_m")),
+                      Cell(RunSpreadOf(done, "odometry_relations_trans_mean_m").mean),
+                      Cell(RunSpreadOf(done, "wall_time_s").mean, "{:.1f}"),
+                      Cell(RunSpreadOf(done, "peak_rss_mib").max, "{:.0f}"));
   }
   return md;
 }

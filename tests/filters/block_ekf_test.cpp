@@ -12,6 +12,7 @@
 #include <functional>
 #include <numbers>
 
+#include "common/landmark_inputs.hpp"
 #include "common/numeric_jacobian.hpp"
 #include "filters/dense_reference.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
@@ -30,19 +31,8 @@ using Jacobians = std::vector<Eigen::MatrixXd>;
 
 constexpr double kPi = std::numbers::pi;
 
-Control Odo(double dx, double dy, double dth) {
-  Control u(3);
-  u << dx, dy, dth;
-  return u;
-}
-
-PointObservation RangeBearingObs(double r, double b, LandmarkId id) {
-  PointObservation obs;
-  obs.z << r, b;
-  obs.R = Eigen::Vector2d(0.05 * 0.05, 0.01 * 0.01).asDiagonal();
-  obs.id = id;
-  return obs;
-}
+using testing::Odo;
+using testing::RangeBearingObs;
 
 // ---- Test-only kinds and models, each defined by its math on the means of its blocks. ----
 

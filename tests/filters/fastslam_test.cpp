@@ -18,7 +18,7 @@ namespace {
 using testing::Odo;
 using testing::RangeBearingObs;
 
-FastSlam MakeFilter(FastSlamParams params) {
+FastSlam MakeFastSlam(FastSlamParams params) {
   return FastSlam(params, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>());
 }
 
@@ -44,7 +44,7 @@ TEST_P(FastSlamProposals, OneParticleFixedPoseEqualsTheLandmarkEkf) {
   params.particles = 1;
   params.known_association = true;
   params.proposal = GetParam();
-  FastSlam slam = MakeFilter(params);
+  FastSlam slam = MakeFastSlam(params);
   Pose2 x(1.0, -2.0, 0.4);
   slam.Reset(x);
   const PointObservation first = RangeBearingObs(7.0, 0.3, 42);
@@ -83,7 +83,7 @@ FastSlam OneWeightedStep(int n, double threshold, std::uint64_t seed, double q_x
   params.proposal = FastSlamProposal::kMotion;
   params.resampling.threshold = threshold;
   params.seed = seed;
-  FastSlam slam = MakeFilter(params);
+  FastSlam slam = MakeFastSlam(params);
   slam.Reset(Pose2());
   const PointObservation first = RangeBearingObs(5.0, 0.5, 1);
   slam.Update({&first, 1});
@@ -162,7 +162,7 @@ TEST(FastSlamMemory, ResamplingSharesTheParticlesMaps) {
   params.particles = 50;
   params.known_association = true;
   params.resampling.threshold = 2.0;
-  FastSlam slam = MakeFilter(params);
+  FastSlam slam = MakeFastSlam(params);
   slam.Reset(Pose2());
   LandmarkMap prior;
   for (int i = 0; i < 1000; ++i) {
@@ -196,7 +196,7 @@ TEST(FastSlamAssociation, NewLandmarkTestsDecideByDensityOrByDistance) {
     FastSlamParams params;
     params.particles = 1;
     params.new_landmark_test = test;
-    FastSlam slam = MakeFilter(params);
+    FastSlam slam = MakeFastSlam(params);
     slam.Reset(Pose2());
     LandmarkMap prior;
     prior.landmarks.push_back(
@@ -217,7 +217,7 @@ TEST(FastSlamAssociation, NewLandmarkTestsDecideByDensityOrByDistance) {
 TEST(FastSlamAssociation, MaximumLikelihoodMatchesAndCreates) {
   FastSlamParams params;
   params.particles = 10;
-  FastSlam slam = MakeFilter(params);
+  FastSlam slam = MakeFastSlam(params);
   slam.Reset(Pose2());
   const std::vector<PointObservation> first = {RangeBearingObs(5.0, 0.5), RangeBearingObs(8.0, -1.0)};
   const std::vector<AssociationDecision> d0 = slam.Update(first);
@@ -264,7 +264,7 @@ TEST(FastSlamAssociation, NegativeEvidenceRemovesUnseenLandmarks) {
     FastSlamParams params;
     params.particles = 5;
     params.negative_evidence = negative;
-    FastSlam slam = MakeFilter(params);
+    FastSlam slam = MakeFastSlam(params);
     slam.Reset(Pose2());
     const std::vector<PointObservation> first = {RangeBearingObs(5.0, 0.5), RangeBearingObs(9.0, -1.0)};
     slam.Update(first);
@@ -277,7 +277,7 @@ TEST(FastSlamAssociation, NegativeEvidenceRemovesUnseenLandmarks) {
 }
 
 TEST(FastSlam, RejectsNonFiniteInputs) {
-  FastSlam slam = MakeFilter({});
+  FastSlam slam = MakeFastSlam({});
   EXPECT_THROW(slam.Predict(Odo(NAN, 0.0, 0.0), 0.1), std::invalid_argument);
   const PointObservation bad = RangeBearingObs(INFINITY, 0.0);
   EXPECT_THROW(slam.Update({&bad, 1}), std::invalid_argument);

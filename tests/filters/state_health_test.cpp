@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "common/landmark_inputs.hpp"
 #include "common/synthetic_room.hpp"
 #include "landmark_circuit.hpp"
 #include "slamkit/filters/block_ekf.hpp"
@@ -48,11 +49,7 @@ EkfSlam MakeSlam(StateHealthMode mode, bool known_association = true) {
   return EkfSlam(params, std::make_unique<OdometryModel>(), std::make_unique<RelativePointModel>());
 }
 
-Control Odo(double dx, double dy, double dth) {
-  Control u(3);
-  u << dx, dy, dth;
-  return u;
-}
+using testing::Odo;
 
 PointObservation Sighting(double x, double y, LandmarkId id) {
   PointObservation obs;
