@@ -12,7 +12,6 @@
 namespace slamkit {
 namespace {
 
-
 // Layout as the path figure's (tuned by eye on 1200×1000 images).
 constexpr internal::Region kMapRegion{-0.07, 1.1, -0.05, 1.06};
 constexpr double kMapFontSize = 3.0;

@@ -113,11 +113,11 @@ bool DrawMapLayers(mglGraph& gr, const MapLayers& layers, const PathFigureData& 
   char ellipse_label[64];
   std::snprintf(ellipse_label, sizeof(ellipse_label), "%g\\sigma{} ellipses", sigma);
   const PathLayer drawn[] = {{&layers.ellipses, "{r6}-", ellipse_label},
-                         {&layers.truth, "k-2", "true path"},
-                         {&layers.estimate, "b-2", "estimated path"},
-                         {&layers.landmarks, "r .", "estimated landmarks"},
-                         {&layers.true_landmarks, "g +", "true landmarks"},
-                         {&layers.markers, "m #o", Escaped(data.markers_label)}};
+                             {&layers.truth, "k-2", "true path"},
+                             {&layers.estimate, "b-2", "estimated path"},
+                             {&layers.landmarks, "r .", "estimated landmarks"},
+                             {&layers.true_landmarks, "g +", "true landmarks"},
+                             {&layers.markers, "m #o", Escaped(data.markers_label)}};
   for (const PathLayer& layer : drawn) {
     if (layer.xy->Empty()) continue;
     // The few marked points must stand out among the landmarks: larger circles.

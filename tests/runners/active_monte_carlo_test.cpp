@@ -63,18 +63,19 @@ TEST(ActiveMonteCarlo, RoutePlannerGivesTheOpenLoopFigures) {
 }
 
 TEST(ActiveMonteCarlo, SameSeedSameResultWhateverTheThreadCount) {
+  constexpr int kRuns = 2;
   const ScenarioConfig c = ShortSwslam();
   const ActiveMonteCarloResult one =
-      RunActiveMonteCarlo(c, EkfSlamFactory(c), PlannerKind::kSwslam, Params(2, 3, 1));
+      RunActiveMonteCarlo(c, EkfSlamFactory(c), PlannerKind::kSwslam, Params(kRuns, 3, 1));
   const ActiveMonteCarloResult two =
-      RunActiveMonteCarlo(c, EkfSlamFactory(c), PlannerKind::kSwslam, Params(2, 3, 2));
+      RunActiveMonteCarlo(c, EkfSlamFactory(c), PlannerKind::kSwslam, Params(kRuns, 3, 2));
   EXPECT_EQ(one.mc.anees, two.mc.anees);
   EXPECT_EQ(one.mc.position_rmse_m, two.mc.position_rmse_m);
   EXPECT_EQ(one.mc.runs_at_step, two.mc.runs_at_step);
-  ASSERT_EQ(one.traces.size(), 2u);
-  ASSERT_EQ(two.traces.size(), 2u);
+  ASSERT_EQ(one.traces.size(), std::size_t{kRuns});
+  ASSERT_EQ(two.traces.size(), std::size_t{kRuns});
   int detours = 0;
-  for (std::size_t k = 0; k < 2; ++k) {
+  for (std::size_t k = 0; k < kRuns; ++k) {
     EXPECT_EQ(one.traces[k].centres_m, two.traces[k].centres_m) << k;
     EXPECT_EQ(one.traces[k].steps, two.traces[k].steps) << k;
     ASSERT_EQ(one.traces[k].sections.size(), two.traces[k].sections.size()) << k;
@@ -92,10 +93,11 @@ TEST(ActiveMonteCarlo, SameSeedSameResultWhateverTheThreadCount) {
 
 // With detours the runs differ in length: each step's figures are over the runs that reached it.
 TEST(ActiveMonteCarlo, StepSeriesAverageTheRunsStillRunning) {
+  constexpr int kRuns = 3;
   const ScenarioConfig c = ShortSwslam();
   const ActiveMonteCarloResult r =
-      RunActiveMonteCarlo(c, EkfSlamFactory(c), PlannerKind::kSwslam, Params(3, 8, 2));
-  ASSERT_EQ(r.mc.runs.size(), 3u);
+      RunActiveMonteCarlo(c, EkfSlamFactory(c), PlannerKind::kSwslam, Params(kRuns, 8, 2));
+  ASSERT_EQ(r.mc.runs.size(), std::size_t{kRuns});
   std::set<std::size_t> lengths;
   std::size_t longest = 0;
   for (const RunResult& run : r.mc.runs) {
@@ -118,8 +120,8 @@ TEST(ActiveMonteCarlo, StepSeriesAverageTheRunsStillRunning) {
     EXPECT_DOUBLE_EQ(r.mc.anees[k], sum / n) << k;
     EXPECT_DOUBLE_EQ(r.mc.position_rmse_m[k], std::sqrt(sq / n)) << k;
   }
-  EXPECT_EQ(r.mc.runs_at_step.front(), 3);
-  EXPECT_LT(r.mc.runs_at_step.back(), 3);
+  EXPECT_EQ(r.mc.runs_at_step.front(), kRuns);
+  EXPECT_LT(r.mc.runs_at_step.back(), kRuns);
   EXPECT_TRUE(std::is_sorted(r.mc.runs_at_step.rbegin(), r.mc.runs_at_step.rend()));
 }
 
