@@ -1,4 +1,5 @@
 // `slamkit run`: EKF-SLAM over a real data set.
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -36,6 +37,7 @@ struct RunOptions {
   std::string config;
   std::string filter = "ekf";  // ekf | fastslam1 | fastslam2
   int particles = FastSlamParams{}.particles;
+  std::uint64_t seed = FastSlamParams{}.seed;
   int threads = 0;
   bool association_given = false;  // --association overrides --config
   bool no_figures = false;
@@ -76,6 +78,7 @@ IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunPara
   if (kind == FilterKind::kEkf) return RunEkfSlamOnIsam(log, params);
   FastSlamParams fastslam = FastSlamParamsFor(kind, o.particles, params.ekf);
   fastslam.threads = o.threads > 0 ? o.threads : UsableCpuCount();
+  fastslam.seed = o.seed;
   return RunFastSlamOnIsam(log, params, fastslam);
 }
 
@@ -84,7 +87,7 @@ int RunIsamCommand(const RunOptions& o) {
   if (o.filter != "ekf" &&
       params.ekf.association_method == AssociationMethod::kJointCompatibility) {
     throw CLI::ValidationError("--filter", "jcbb is the EKF's association: FastSLAM associates "
-                               "each particle by maximum likelihood (--association nn) or known");
+                               "each particle by maximum likelihood (--association ml) or known");
   }
   const IsamLog log = ReadIsamLog(o.isam);
   OutputDir output(o.out);
@@ -101,7 +104,10 @@ int RunIsamCommand(const RunOptions& o) {
   }
   nlohmann::json metrics = IsamMetrics(result, params);
   metrics["filter"] = o.filter;
-  if (o.filter != "ekf") metrics["particles"] = o.particles;
+  if (o.filter != "ekf") {
+    metrics["particles"] = o.particles;
+    metrics["seed"] = o.seed;
+  }
   WriteIsamOutputs(dir, metrics, result);  // metrics.json last
   output.Commit();
   fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
@@ -130,11 +136,13 @@ void RegisterRun(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
   CLI::Option* association = cmd->add_option("--association", o->association,
-                  "nn (nearest neighbour), jcbb (joint compatibility, Neira & Tardos 2001) or "
-                  "known (the file's landmark ids)")
+                  "nn (nearest neighbour), ml (maximum likelihood), jcbb (joint compatibility, "
+                  "Neira & Tardos 2001) or known (the file's landmark ids); FastSLAM takes nn "
+                  "and ml both as each particle's maximum likelihood")
       ->transform(CLI::CheckedTransformer(std::map<std::string, AssociationMethod>{
           {"nn", AssociationMethod::kNearestNeighbour},
           {"jcbb", AssociationMethod::kJointCompatibility},
+          {"ml", AssociationMethod::kMaximumLikelihood},
           {"known", AssociationMethod::kKnown}}))
       ->default_str("nn");
   cmd->add_flag("--known-association", o->known_association, "the same as --association known")
@@ -174,12 +182,16 @@ void RegisterRun(CLI::App& app, int& exit_code) {
                        ->capture_default_str()
                        ->check(PositiveNumber()));
   cmd->add_option("--filter", o->filter,
-                  "ekf, fastslam1 or fastslam2 (with --association nn: per-particle maximum "
-                  "likelihood)")
+                  "ekf, fastslam1 or fastslam2 (with --association nn or ml: per-particle "
+                  "maximum likelihood)")
       ->check(CLI::IsMember({"ekf", "fastslam1", "fastslam2"}))
       ->capture_default_str();
   cmd->add_option("--particles", o->particles, "FastSLAM's particle count")
       ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed,
+                  "FastSLAM's random seed (the same seed gives the same run at any thread count; "
+                  "the EKF draws nothing)")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "FastSLAM's threads (0: all usable CPUs)")
       ->check(CLI::Range(0, 1024));

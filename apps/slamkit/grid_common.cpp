@@ -79,6 +79,7 @@ const char* AssociationName(AssociationMethod m) {
   switch (m) {
     case AssociationMethod::kKnown: return "known";
     case AssociationMethod::kJointCompatibility: return "joint-compatibility";
+    case AssociationMethod::kMaximumLikelihood: return "maximum-likelihood";
     case AssociationMethod::kNearestNeighbour: break;
   }
   return "nearest-neighbour";

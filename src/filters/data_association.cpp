@@ -1,7 +1,11 @@
 #include "slamkit/filters/data_association.hpp"
 
+#include <cmath>
 #include <limits>
+#include <span>
 #include <vector>
+
+#include <Eigen/LU>
 
 namespace slamkit {
 
@@ -28,23 +32,66 @@ AssociationDecision NearestNeighbourAssociator::Associate(
   return best;
 }
 
+namespace {
+
 // A landmark taken by an earlier observation of the scan is no candidate for the later ones: two
-// sightings in one scan are two landmarks.
-std::vector<AssociationDecision> NearestNeighbourAssociator::Associate(
-    const AssociationContext& scan) {
+// sightings in one scan are two landmarks. `rule(i, free)` decides observation i.
+template <class Rule>
+std::vector<AssociationDecision> DecideInScanOrder(const AssociationContext& scan,
+                                                   std::vector<AssociationCandidate>& free,
+                                                   std::vector<char>& taken, Rule rule) {
   std::vector<AssociationDecision> decisions;
   decisions.reserve(scan.NumObservations());
-  taken_.assign(scan.NumLandmarks(), 0);
+  taken.assign(scan.NumLandmarks(), 0);
   for (int i = 0; i < scan.NumObservations(); ++i) {
-    free_.clear();
+    free.clear();
     for (const AssociationCandidate& c : scan.Candidates(i)) {
-      if (!taken_[c.landmark]) free_.push_back(c);
+      if (!taken[c.landmark]) free.push_back(c);
     }
-    const AssociationDecision d = Associate(free_);
-    if (d.kind == AssociationDecision::Kind::kMatched) taken_[d.landmark] = 1;
+    const AssociationDecision d = rule(i, std::span<const AssociationCandidate>(free));
+    if (d.kind == AssociationDecision::Kind::kMatched) taken[d.landmark] = 1;
     decisions.push_back(d);
   }
   return decisions;
+}
+
+// -2 ln N(ν; 0, S) less the constant 2 ln 2π: what maximum likelihood minimises.
+double NegativeLogDensity(const AssociationContext& scan, int observation,
+                          const AssociationCandidate& c) {
+  const Pairing pairing{observation, c.landmark};
+  const JointInnovation joint = scan.Joint(std::span<const Pairing>(&pairing, 1));
+  return c.distance_chi2 + std::log(joint.S.determinant());
+}
+
+}  // namespace
+
+std::vector<AssociationDecision> NearestNeighbourAssociator::Associate(
+    const AssociationContext& scan) {
+  return DecideInScanOrder(scan, free_, taken_,
+                           [this](int, std::span<const AssociationCandidate> free) {
+                             return Associate(free);
+                           });
+}
+
+std::vector<AssociationDecision> MaximumLikelihoodAssociator::Associate(
+    const AssociationContext& scan) {
+  const double gate = nearest_.params().gate_chi2;
+  return DecideInScanOrder(
+      scan, free_, taken_, [&](int i, std::span<const AssociationCandidate> free) {
+        AssociationDecision d = nearest_.Associate(free);
+        if (d.kind != AssociationDecision::Kind::kMatched) return d;
+        double best = std::numeric_limits<double>::infinity();
+        for (const AssociationCandidate& c : free) {
+          if (c.distance_chi2 >= gate) continue;
+          const double cost = NegativeLogDensity(scan, i, c);
+          if (cost < best) {
+            best = cost;
+            d.landmark = c.landmark;
+            d.distance_chi2 = c.distance_chi2;
+          }
+        }
+        return d;
+      });
 }
 
 std::vector<AssociationDecision> KnownAssociation::Associate(const AssociationContext& scan) {

@@ -35,6 +35,8 @@ std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params) {
     case AssociationMethod::kKnown: return std::make_unique<KnownAssociation>();
     case AssociationMethod::kJointCompatibility:
       return std::make_unique<JcbbAssociator>(params.association, params.jcbb);
+    case AssociationMethod::kMaximumLikelihood:
+      return std::make_unique<MaximumLikelihoodAssociator>(params.association);
     case AssociationMethod::kNearestNeighbour: break;
   }
   return std::make_unique<NearestNeighbourAssociator>(params.association);

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 
 #include <filesystem>
@@ -171,6 +172,47 @@ TEST(Cli, TheLandmarkFilterIsChosenByName) {
   EXPECT_EQ(jcbb.exit_code, 2);
   EXPECT_NE(jcbb.output.find("--filter"), std::string::npos) << jcbb.output;
   EXPECT_FALSE(fs::exists(dir / "isam"));
+}
+
+// An iSAM log of a circle (radius 5 m, 60 steps of 0.5 m) around four trees, each sighted from
+// every pose without noise.
+fs::path WriteCircleIsamLog(const fs::path& dir) {
+  const double tree[4][2] = {{0.0, 5.0}, {2.0, 5.0}, {0.0, 7.0}, {-2.0, 4.0}};
+  std::ofstream out(dir / "circle.isam");
+  double x = 0.0, y = 0.0, theta = 0.0;
+  for (int i = 0; i < 60; ++i) {
+    out << "ODOMETRY " << i << " " << i + 1 << " 0.5 0 0.1 0.0001 0 0 0.0001 0 0.0001\n";
+    x += 0.5 * std::cos(theta);
+    y += 0.5 * std::sin(theta);
+    theta += 0.1;
+    for (int k = 0; k < 4; ++k) {
+      const double dx = tree[k][0] - x, dy = tree[k][1] - y;
+      out << "LANDMARK " << i + 1 << " " << 1000 + k << " "
+          << std::cos(theta) * dx + std::sin(theta) * dy << " "
+          << -std::sin(theta) * dx + std::cos(theta) * dy << " 0.04 0 0.04\n";
+    }
+  }
+  return dir / "circle.isam";
+}
+
+// Issue 11: `run --filter fastslam2 --seed S` gives the same run for the same seed, another for
+// another seed, and records the seed.
+TEST(Cli, FastSlamRunsAreReproducedByTheirSeed) {
+  const fs::path dir = FreshDir("run_seed");
+  const fs::path log = WriteCircleIsamLog(dir);
+  std::string estimate[3];
+  const int seeds[3] = {3, 3, 4};
+  for (int i = 0; i < 3; ++i) {
+    const fs::path out = dir / std::to_string(i);
+    const auto r = RunCli("run --isam " + log.string() + " --filter fastslam2 --particles 5 " +
+                          "--seed " + std::to_string(seeds[i]) + " --threads " +
+                          std::to_string(i + 1) + " --no-figures --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    estimate[i] = ReadText(out / "estimate.tum");
+    EXPECT_EQ(nlohmann::json::parse(ReadText(out / "metrics.json"))["seed"], seeds[i]);
+  }
+  EXPECT_EQ(estimate[0], estimate[1]);
+  EXPECT_NE(estimate[0], estimate[2]);
 }
 
 // Issue 8 item 2: a closed or full stderr must not abort the run (the progress printer and the

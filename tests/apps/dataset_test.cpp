@@ -39,7 +39,7 @@ TEST(VictoriaPark, KnownAssociationMapsEveryFileLandmark) {
 // argument error.
 TEST(VictoriaPark, TheAssociationIsChosenByName) {
   if (!fs::exists(kVictoria)) GTEST_SKIP() << "no " << kVictoria;
-  for (const std::string name : {"nn", "jcbb", "known"}) {
+  for (const std::string name : {"nn", "ml", "jcbb", "known"}) {
     const fs::path dir = FreshDir("victoria_" + name);
     const auto r = RunCli("run --isam " + kVictoria + " --association " + name +
                           " --no-figures --out " + dir.string());
@@ -49,7 +49,7 @@ TEST(VictoriaPark, TheAssociationIsChosenByName) {
     EXPECT_EQ(m["known_association"], name == "known");
     EXPECT_GT(m["landmarks_mapped"].get<int>(), 100);
   }
-  const auto bad = RunCli("run --isam " + kVictoria + " --association ml --out " +
+  const auto bad = RunCli("run --isam " + kVictoria + " --association mle --out " +
                           FreshDir("victoria_bad").string());
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.output.find("--association"), std::string::npos) << bad.output;

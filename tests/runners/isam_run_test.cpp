@@ -126,8 +126,8 @@ TEST_F(IsamConfigFile, MistakesNameTheFileLineAndKey) {
     const fs::path path = WriteFile("bad.yaml", text);
     return testing::InputErrorOf([&] { LoadIsamConfig(path); });
   };
-  EXPECT_NE(error("association: ml\n").find("bad.yaml:1"), std::string::npos);
-  EXPECT_NE(error("association: ml\n").find("association"), std::string::npos);
+  EXPECT_NE(error("association: mle\n").find("bad.yaml:1"), std::string::npos);
+  EXPECT_NE(error("association: mle\n").find("association"), std::string::npos);
   EXPECT_NE(error("gate_chi2: 9\nodometry: {stt: -1}\n").find("odometry.stt"), std::string::npos);
   EXPECT_NE(error("gate_chi2: 20\n").find("new_landmark_chi2 must be >= gate_chi2"),
             std::string::npos);

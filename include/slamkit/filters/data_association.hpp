@@ -30,7 +30,8 @@ struct AssociationDecision {
   enum class Kind { kMatched, kNew, kDropped };
   Kind kind = Kind::kDropped;
   int landmark = -1;          // the matched or created landmark's index, -1 when dropped
-  double distance_chi2 = 0.0; // to the nearest candidate (infinity when there was none)
+  // To the matched landmark; when none matched, to the nearest candidate (infinity if none).
+  double distance_chi2 = 0.0;
 };
 
 // A pairing hypothesis for a joint-compatibility test: observation `observation` of the scan
@@ -89,6 +90,23 @@ class NearestNeighbourAssociator final : public Associator {
   AssociationParams params_;
   std::vector<AssociationCandidate> free_;  // scratch, reused across scans
   std::vector<char> taken_;                 // scratch, reused across scans
+};
+
+// Maximum likelihood (Thrun, Burgard & Fox 2005, Sec. 7.5 and 10.3; per particle in FastSLAM,
+// Montemerlo et al. 2003, Sec. 4): among the landmarks within gate_chi2, the one under whose
+// innovation density N(0, S) the observation is most likely, d² + ln|S| smallest. The new and
+// ambiguous decisions are nearest neighbour's. The two differ where the candidates' S differ: a
+// landmark whose prediction is uncertain lies near many sightings in Mahalanobis distance, but
+// its density at any of them is low.
+class MaximumLikelihoodAssociator final : public Associator {
+ public:
+  explicit MaximumLikelihoodAssociator(const AssociationParams& params = {}) : nearest_(params) {}
+  std::vector<AssociationDecision> Associate(const AssociationContext& scan) override;
+
+ private:
+  NearestNeighbourAssociator nearest_;  // the gates
+  std::vector<AssociationCandidate> free_;
+  std::vector<char> taken_;
 };
 
 // The observation's id names its landmark (simulator truth, a data set's association): the

@@ -29,6 +29,7 @@ enum class AssociationMethod {
   kNearestNeighbour,  // SPEC S2, Eqs. 6-7
   kKnown,             // each observation's id is its landmark (simulator truth, a data set's)
   kJointCompatibility,  // JCBB (Neira & Tardós 2001), over the whole scan (see `schedule`)
+  kMaximumLikelihood,   // the most likely landmark within the gate (MaximumLikelihoodAssociator)
 };
 
 // When association runs relative to the updates of a scan.
