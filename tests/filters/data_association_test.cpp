@@ -2,11 +2,11 @@
 
 #include <gtest/gtest.h>
 
-#include <span>
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
+
+#include "common/translation_scan.hpp"
 
 namespace slamkit {
 namespace {
@@ -35,58 +35,25 @@ TEST(NearestNeighbour, NewWhenFarFromAllOrNoCandidates) {
   EXPECT_EQ(nn.Associate({}).kind, AssociationDecision::Kind::kNew);
 }
 
-// Point landmarks seen as z = l - x from a pose known exactly; landmark l's position is known to
-// N(l, P_l), so the innovation covariance S = P_l + R differs between landmarks.
-class PointScan final : public AssociationContext {
- public:
-  PointScan(std::vector<Eigen::Vector2d> landmarks, std::vector<double> variances,
-            std::vector<Eigen::Vector2d> z, double r_variance)
-      : landmarks_(std::move(landmarks)), variances_(std::move(variances)) {
-    for (const Eigen::Vector2d& zi : z) {
-      PointObservation o;
-      o.z = zi;
-      o.R = Eigen::Matrix2d::Identity() * r_variance;
-      z_.push_back(o);
-    }
-  }
-
-  int NumObservations() const override { return static_cast<int>(z_.size()); }
-  const PointObservation& Observation(int i) const override { return z_[i]; }
-  int NumLandmarks() const override { return static_cast<int>(landmarks_.size()); }
-  std::span<const AssociationCandidate> Candidates(int i) const override {
-    scratch_.clear();
-    for (int l = 0; l < NumLandmarks(); ++l) scratch_.push_back({l, Distance(i, l)});
-    return scratch_;
-  }
-  int LandmarkWithSourceId(LandmarkId) const override { return -1; }
-  double Distance(int i, int l) const override {
-    const JointInnovation j = Joint(std::vector<Pairing>{{i, l}});
-    return j.nu.dot(j.S.inverse() * j.nu);
-  }
-  JointInnovation Joint(std::span<const Pairing> h) const override {
-    // One pairing suffices here: the landmarks are independent and the pose is exact.
-    JointInnovation j;
-    j.nu = z_[h[0].observation].z - landmarks_[h[0].landmark];
-    j.S = Eigen::Matrix2d::Identity() * variances_[h[0].landmark] + z_[h[0].observation].R;
-    return j;
-  }
-
- private:
-  std::vector<Eigen::Vector2d> landmarks_;
-  std::vector<double> variances_;
-  std::vector<PointObservation> z_;
-  mutable std::vector<AssociationCandidate> scratch_;
-};
-
 // A landmark mapped once from afar (σ = 2 m) and a well-mapped one (σ = 0.1 m), both within the
 // gate of a sighting 0.7 m from the first and 0.3 m from the second: the first is nearer in
 // Mahalanobis distance (0.12 against 4.5), the second far more likely (ln|S| 2.8 against -7.8).
-PointScan UncertainBesideCertain(std::vector<Eigen::Vector2d> z) {
-  return PointScan({{0.0, 0.0}, {1.0, 0.0}}, {4.0, 0.01}, std::move(z), 0.01);
+testing::TranslationScan UncertainBesideCertain(const std::vector<Eigen::Vector2d>& z) {
+  std::vector<PointObservation> sightings;
+  for (const Eigen::Vector2d& zi : z) {
+    PointObservation o;
+    o.z = zi;
+    o.R = Eigen::Matrix2d::Identity() * 0.01;
+    sightings.push_back(o);
+  }
+  return testing::TranslationScan({{0.0, 0.0}, {1.0, 0.0}}, sightings, Eigen::Vector2d::Zero(),
+                                  Eigen::Matrix2d::Zero(),
+                                  {Eigen::Matrix2d::Identity() * 4.0,
+                                   Eigen::Matrix2d::Identity() * 0.01});
 }
 
 TEST(MaximumLikelihood, TakesTheLikelierLandmarkWhereNearestNeighbourTakesTheUncertainOne) {
-  const PointScan scan = UncertainBesideCertain({{0.7, 0.0}});
+  const testing::TranslationScan scan = UncertainBesideCertain({{0.7, 0.0}});
   NearestNeighbourAssociator nn;
   MaximumLikelihoodAssociator ml;
   const std::vector<AssociationDecision> by_distance = nn.Associate(scan);
@@ -100,7 +67,7 @@ TEST(MaximumLikelihood, TakesTheLikelierLandmarkWhereNearestNeighbourTakesTheUnc
 // The gates are nearest neighbour's: a likelier landmark outside gate_chi2 is never taken, and a
 // sighting far from every landmark is new, one between the gates dropped.
 TEST(MaximumLikelihood, KeepsNearestNeighboursGates) {
-  const PointScan scan = UncertainBesideCertain({{0.0, 6.5}, {0.0, 9.0}, {1.0, 0.5}});
+  const testing::TranslationScan scan = UncertainBesideCertain({{0.0, 6.5}, {0.0, 9.0}, {1.0, 0.5}});
   MaximumLikelihoodAssociator ml;
   const std::vector<AssociationDecision> d = ml.Associate(scan);
   EXPECT_EQ(d[0].kind, AssociationDecision::Kind::kDropped);  // d² = 10.5 from landmark 0
@@ -112,7 +79,7 @@ TEST(MaximumLikelihood, KeepsNearestNeighboursGates) {
 // A landmark takes one sighting per scan: the second sighting near the well-mapped landmark
 // falls to the other.
 TEST(MaximumLikelihood, TakesEachLandmarkOncePerScan) {
-  const PointScan scan = UncertainBesideCertain({{0.9, 0.0}, {1.1, 0.0}});
+  const testing::TranslationScan scan = UncertainBesideCertain({{0.9, 0.0}, {1.1, 0.0}});
   MaximumLikelihoodAssociator ml;
   const std::vector<AssociationDecision> d = ml.Associate(scan);
   EXPECT_EQ(d[0].landmark, 1);
