@@ -67,7 +67,8 @@ TEST(MaximumLikelihood, TakesTheLikelierLandmarkWhereNearestNeighbourTakesTheUnc
 // The gates are nearest neighbour's: a likelier landmark outside gate_chi2 is never taken, and a
 // sighting far from every landmark is new, one between the gates dropped.
 TEST(MaximumLikelihood, KeepsNearestNeighboursGates) {
-  const testing::TranslationScan scan = UncertainBesideCertain({{0.0, 6.5}, {0.0, 9.0}, {1.0, 0.5}});
+  const testing::TranslationScan scan =
+      UncertainBesideCertain({{0.0, 6.5}, {0.0, 9.0}, {1.0, 0.5}});
   MaximumLikelihoodAssociator ml;
   const std::vector<AssociationDecision> d = ml.Associate(scan);
   EXPECT_EQ(d[0].kind, AssociationDecision::Kind::kDropped);  // d² = 10.5 from landmark 0
