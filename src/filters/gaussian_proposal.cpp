@@ -25,7 +25,7 @@ ProposalDistribution GaussianProposal(const GridMapView& grid, const ScanPoints&
         offsets[j] = {ix * params.step_xy_m, iy * params.step_xy_m, it * params.step_theta_rad};
         const Pose2 x(match.x() + offsets[j].x(), match.y() + offsets[j].y(),
                       match.theta() + offsets[j].z());
-        log_tau[j] = EvaluatePose(grid, points, x, matcher).log_likelihood +
+        log_tau[j] = ScanLogLikelihood(grid, points, x, matcher) +
                      OdometryMotionLogDensity(previous, delta, x, motion);
       }
     }

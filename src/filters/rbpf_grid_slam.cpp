@@ -145,7 +145,7 @@ double RbpfGridSlam::MoveParticle(int i, const ScanPoints& points, const Pose2& 
   double log_likelihood = 0.0;
   if (!match.accepted) {
     p.pose = predicted;
-    log_likelihood = EvaluatePose(map, points, predicted, params_.matcher).log_likelihood;
+    log_likelihood = ScanLogLikelihood(map, points, predicted, params_.matcher);
   } else if (params_.proposal == ProposalScheme::kGaussian) {
     ProposalDistribution proposal = GaussianProposal(map, points, match.pose, previous, delta,
                                                      params_.motion, params_.matcher,

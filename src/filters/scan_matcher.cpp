@@ -1,5 +1,6 @@
 #include "slamkit/filters/scan_matcher.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -37,9 +38,25 @@ ScanPoints PrepareScan(const LaserScan& scan, double usable_range_m,
 
 namespace {
 
+// The smallest of visit(dx, dy) over the window's cells other than the centre, visited ring by
+// ring (Chebyshev distance k from the centre cell) and stopped once no cell further out can be
+// nearer: a point of the centre cell is at least (k + 0.5) cells from every cell of ring k + 1.
+// The minimum equals a full scan's, so the wide coarse window costs little where a hit is close.
+// The margin keeps that true when rounding puts the point a hair outside its cell.
+template <class Visit>
+double NearestInRings(int window, double resolution, const Visit& visit) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 1; k <= window; ++k) {
+    for (int d = -k; d <= k; ++d) best = std::min({best, visit(d, -k), visit(d, k)});
+    for (int d = 1 - k; d < k; ++d) best = std::min({best, visit(-k, d), visit(k, d)});
+    const double reach = (k + 0.5) * resolution;
+    if (best < reach * reach * (1.0 - 1e-9)) break;
+  }
+  return best;
+}
+
 // The nearest-hit search over a window that lies inside one tile: the same cells and tests as the
-// general search below with one tile lookup instead of two per cell. The window is searched in the
-// same order, so ties resolve the same way.
+// general search below with one tile lookup instead of two per cell.
 double NearestHitInTile(const OccupancyGrid::CellValue* tile, const OccupancyGrid& grid,
                         const Eigen::Vector2d& end, const CellIndex& c, const CellIndex& f,
                         int window) {
@@ -48,17 +65,15 @@ double NearestHitInTile(const OccupancyGrid::CellValue* tile, const OccupancyGri
   const int hit0 = (c.y & kMask) * kSize + (c.x & kMask);
   const int free_offset = (f.y - c.y) * kSize + (f.x - c.x);
   const double r = grid.resolution();
-  double best = std::numeric_limits<double>::infinity();
-  for (int dx = -window; dx <= window; ++dx) {
-    const double ex = (c.x + dx + 0.5) * r - end.x();
-    for (int dy = -window; dy <= window; ++dy) {
-      const int hit = hit0 + dy * kSize + dx;
-      if (tile[hit] <= 0 || tile[hit + free_offset] >= 0) continue;
-      const double ey = (c.y + dy + 0.5) * r - end.y();
-      best = std::min(best, ex * ex + ey * ey);
+  return NearestInRings(window, r, [&](int dx, int dy) {
+    const int hit = hit0 + dy * kSize + dx;
+    if (tile[hit] <= 0 || tile[hit + free_offset] >= 0) {
+      return std::numeric_limits<double>::infinity();
     }
-  }
-  return best;
+    const double ex = (c.x + dx + 0.5) * r - end.x();
+    const double ey = (c.y + dy + 0.5) * r - end.y();
+    return ex * ex + ey * ey;
+  });
 }
 
 // The cells the search reads: the map alone (its tiles read directly), or a view with a second
@@ -98,19 +113,18 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
       return NearestHitInTile(grid.TileSteps(c), grid, end, c, f, window);
     }
   }
-  double best = std::numeric_limits<double>::infinity();
-  for (int dx = -window; dx <= window; ++dx) {
-    for (int dy = -window; dy <= window; ++dy) {
-      const CellIndex hit{c.x + dx, c.y + dy};
-      if (cells(hit) <= 0) continue;
-      if (cells({f.x + dx, f.y + dy}) >= 0) continue;
-      best = std::min(best, (grid.CellCenter(hit) - end).squaredNorm());
+  return NearestInRings(window, r, [&](int dx, int dy) {
+    const CellIndex hit{c.x + dx, c.y + dy};
+    if (cells(hit) <= 0 || cells({f.x + dx, f.y + dy}) >= 0) {
+      return std::numeric_limits<double>::infinity();
     }
-  }
-  return best;
+    return (grid.CellCenter(hit) - end).squaredNorm();
+  });
 }
 
-template <class Cells>
+// Without kScore the score (an exp per beam) is left at zero, for callers that need only the
+// log-likelihood.
+template <bool kScore, class Cells>
 MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanPoints& points,
                       const Pose2& pose, const ScanMatcherParams& params,
                       std::vector<std::uint8_t>* hits) {
@@ -128,7 +142,7 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
     if (std::isfinite(d_sq)) {
       if (hits != nullptr) (*hits)[i] = 1;
       ++q.matched;
-      q.score += std::exp(-d_sq * inv_score);
+      if constexpr (kScore) q.score += std::exp(-d_sq * inv_score);
       q.log_likelihood -= std::min(d_sq, miss_sq) * inv_like;
     } else {
       q.log_likelihood -= miss_sq * inv_like;
@@ -142,9 +156,18 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
 MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
                           const ScanMatcherParams& params, std::vector<std::uint8_t>* hits) {
   if (grid.second == nullptr) {
-    return Evaluate(grid.map, MapOnly{grid.map}, points, pose, params, hits);
+    return Evaluate<true>(grid.map, MapOnly{grid.map}, points, pose, params, hits);
   }
-  return Evaluate(grid.map, Layered{grid}, points, pose, params, hits);
+  return Evaluate<true>(grid.map, Layered{grid}, points, pose, params, hits);
+}
+
+double ScanLogLikelihood(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
+                         const ScanMatcherParams& params) {
+  if (grid.second == nullptr) {
+    return Evaluate<false>(grid.map, MapOnly{grid.map}, points, pose, params, nullptr)
+        .log_likelihood;
+  }
+  return Evaluate<false>(grid.map, Layered{grid}, points, pose, params, nullptr).log_likelihood;
 }
 
 namespace {
@@ -169,24 +192,29 @@ MatchResult HillClimb(const GridMapView& grid, const ScanPoints& points, const P
   double best_objective = best.quality.score;
   double lin = params.linear_step_m, ang = params.angular_step_rad;
   int refinements = 0;
+  // The move back to where the last step came from scored lower already (moves i and i ^ 1 are
+  // opposite), so it is not scored again.
+  int came_back = -1;
   while (refinements <= params.refinements) {
     const Pose2 from = best.pose;
     const Pose2 moves[6] = {
         {from.x() + lin, from.y(), from.theta()}, {from.x() - lin, from.y(), from.theta()},
         {from.x(), from.y() + lin, from.theta()}, {from.x(), from.y() - lin, from.theta()},
         {from.x(), from.y(), from.theta() + ang}, {from.x(), from.y(), from.theta() - ang}};
-    bool improved = false;
-    for (const Pose2& candidate : moves) {
-      const MatchQuality q = EvaluatePose(grid, points, candidate, params);
-      const double objective = q.score - PriorPenalty(initial, candidate, params);
+    int taken = -1;
+    for (int i = 0; i < 6; ++i) {
+      if (i == came_back) continue;
+      const MatchQuality q = EvaluatePose(grid, points, moves[i], params);
+      const double objective = q.score - PriorPenalty(initial, moves[i], params);
       if (objective > best_objective) {
-        best.pose = candidate;
+        best.pose = moves[i];
         best.quality = q;
         best_objective = objective;
-        improved = true;
+        taken = i;
       }
     }
-    if (!improved) {
+    came_back = taken < 0 ? -1 : taken ^ 1;
+    if (taken < 0) {
       lin *= 0.5;
       ang *= 0.5;
       ++refinements;

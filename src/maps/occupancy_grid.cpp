@@ -160,15 +160,7 @@ void OccupancyGrid::UpdateSteps(const CellIndex& c, long delta_steps) {
   CellValue& l =
       MutableTile(TileOf(x), TileOf(y))[OffsetInTile(y) * kTileSize + OffsetInTile(x)];
   l = static_cast<CellValue>(std::clamp(l + delta_steps, min_steps_, max_steps_));
-  if (min_cell_.x > max_cell_.x) {  // the first write
-    min_cell_.x = max_cell_.x = x;
-    min_cell_.y = max_cell_.y = y;
-    return;
-  }
-  if (x < min_cell_.x) min_cell_.x = x;
-  if (y < min_cell_.y) min_cell_.y = y;
-  if (x > max_cell_.x) max_cell_.x = x;
-  if (y > max_cell_.y) max_cell_.y = y;
+  ExtendBounds(x, y);
 }
 
 std::size_t OccupancyGrid::TileCount() const {

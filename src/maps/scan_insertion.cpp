@@ -49,6 +49,13 @@ void ForEachRayCell(const CellIndex& from, const CellIndex& to, bool include_end
   }
 }
 
+// The cells from `origin` up to (not including) `end` get `miss`.
+void TraceMisses(OccupancyGrid& grid, const CellIndex& origin, const CellIndex& end, long miss) {
+  grid.UpdateStepsAlong(
+      [&](const auto& write) { ForEachRayCell(origin, end, /*include_end=*/false, write); },
+      miss);
+}
+
 }  // namespace
 
 std::vector<CellIndex> RayCells(const CellIndex& from, const CellIndex& to) {
@@ -111,8 +118,7 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
   if (!params.misses_spare_scan_hits) {
     for (int i = 0; i < n; ++i) {
       if (!traced[i]) continue;
-      ForEachRayCell(origin, ends[i], /*include_end=*/false,
-                     [&grid, miss](const CellIndex& c) { grid.UpdateSteps(c, miss); });
+      TraceMisses(grid, origin, ends[i], miss);
       if (is_hit(i)) grid.UpdateSteps(ends[i], hit);
     }
     return;
@@ -127,8 +133,7 @@ void InsertScan(OccupancyGrid& grid, const Pose2& laser_pose, const LaserScan& s
   }
   for (int i = 0; i < n; ++i) {
     if (!traced[i]) continue;
-    ForEachRayCell(origin, ends[i], /*include_end=*/false,
-                   [&grid, miss](const CellIndex& c) { grid.UpdateSteps(c, miss); });
+    TraceMisses(grid, origin, ends[i], miss);
   }
   for (const auto& [cell, steps] : before) {  // every read came before any write
     const long change = steps - grid.LogOddsSteps(cell);

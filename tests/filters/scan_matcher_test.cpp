@@ -85,6 +85,8 @@ TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
       ASSERT_EQ(got.matched, want.matched) << "window " << window << ", pose " << k;
       ASSERT_NEAR(got.score, want.score, 1e-9 * points.ends.size());
       ASSERT_NEAR(got.log_likelihood, want.log_likelihood, 1e-9 * points.ends.size());
+      // The likelihood-only evaluation sums the same terms in the same order.
+      ASSERT_EQ(ScanLogLikelihood(grid, points, pose, params), got.log_likelihood);
     }
   }
 }

@@ -82,6 +82,11 @@ MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, con
                           const ScanMatcherParams& params,
                           std::vector<std::uint8_t>* hits = nullptr);
 
+// EvaluatePose(...).log_likelihood without the score's exp per beam: the proposal and the
+// weights need only the likelihood.
+double ScanLogLikelihood(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
+                         const ScanMatcherParams& params);
+
 struct MatchResult {
   Pose2 pose;
   MatchQuality quality;

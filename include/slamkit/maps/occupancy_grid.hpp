@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -105,6 +106,11 @@ class OccupancyGrid {
   // The same with the change already in kLogOddsStep units (ToSteps), for loops over many cells.
   void UpdateSteps(const CellIndex& c, long delta_steps);
   static long ToSteps(float delta) { return std::lround(delta / kLogOddsStep); }
+  // UpdateSteps(c, delta_steps) for every cell c that `for_each_cell(write)` passes to write, in
+  // order. The tile of the last cell is kept, so a run of cells inside one tile (a ray crosses a
+  // tile in up to 64 steps) looks it up, and checks whether it is shared, once.
+  template <class ForEachCell>
+  void UpdateStepsAlong(const ForEachCell& for_each_cell, long delta_steps);
 
   // Inclusive bounds of the cells written so far (min > max when nothing was written).
   CellIndex min_cell() const { return min_cell_; }
@@ -119,6 +125,17 @@ class OccupancyGrid {
   std::shared_ptr<Tile>* FindTileSlot(int tx, int ty);
   [[noreturn]] void ThrowOutsideExtent(const Eigen::Vector2d& p) const;
   Tile& MutableTile(int tx, int ty);
+  void ExtendBounds(int x, int y) {
+    if (min_cell_.x > max_cell_.x) {  // the first write
+      min_cell_.x = max_cell_.x = x;
+      min_cell_.y = max_cell_.y = y;
+      return;
+    }
+    if (x < min_cell_.x) min_cell_.x = x;
+    if (y < min_cell_.y) min_cell_.y = y;
+    if (x > max_cell_.x) max_cell_.x = x;
+    if (y > max_cell_.y) max_cell_.y = y;
+  }
 
   OccupancyGridParams params_;
   double inverse_resolution_;
@@ -132,6 +149,24 @@ class OccupancyGrid {
   CellIndex min_cell_{1, 1};
   CellIndex max_cell_{0, 0};
 };
+
+template <class ForEachCell>
+void OccupancyGrid::UpdateStepsAlong(const ForEachCell& for_each_cell, long delta_steps) {
+  constexpr int kMask = kTileSize - 1;
+  Tile* tile = nullptr;
+  int tile_x = 0, tile_y = 0;
+  for_each_cell([&](const CellIndex& c) {
+    const int x = c.x, y = c.y;  // read one int at a time: see UpdateSteps
+    if (tile == nullptr || (x >> kTileBits) != tile_x || (y >> kTileBits) != tile_y) {
+      tile_x = x >> kTileBits;
+      tile_y = y >> kTileBits;
+      tile = &MutableTile(tile_x, tile_y);
+    }
+    CellValue& l = (*tile)[(y & kMask) * kTileSize + (x & kMask)];
+    l = static_cast<CellValue>(std::clamp(l + delta_steps, min_steps_, max_steps_));
+    ExtendBounds(x, y);
+  });
+}
 
 // Cells on the digital line from `from` to `to` (integer Bresenham), both ends included, in order.
 std::vector<CellIndex> RayCells(const CellIndex& from, const CellIndex& to);
