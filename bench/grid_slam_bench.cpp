@@ -106,11 +106,14 @@ double ReferenceScore(const OccupancyGrid& grid, const ScanPoints& points, const
   return score;
 }
 
-// One evaluation of the score at a pose 2 cm and 1° off; arg 1 runs the cell-by-cell reference.
+// One evaluation of the score at a pose 2 cm and 1° off; first arg 1 runs the cell-by-cell
+// reference (a full scan of each window), the second is the window's half-width in cells (1 as
+// the fine pass, 3 as the coarse pass, where the ring-by-ring search stops early).
 void BM_EvaluatePose(benchmark::State& state) {
   const BuiltMap* built = IntelMap();
   if (!built) return state.SkipWithError("intel.clf not found");
-  const ScanMatcherParams params;
+  ScanMatcherParams params;
+  params.search_cells = int(state.range(1));
   const ScanPoints points = PrepareScan(IntelLog()->scans.back(), kUsableRangeM, params);
   const Pose2 pose = built->path.back().pose.Compose(Pose2(0.02, 0.0, 0.0175));
   for (auto _ : state) {
@@ -126,7 +129,8 @@ BENCHMARK(BM_GridSlamScans)
     ->Args({10, 1})->Args({30, 1})->Args({100, 1})->Args({30, 0})
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ScanMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_EvaluatePose)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_EvaluatePose)
+    ->Args({0, 1})->Args({1, 1})->Args({0, 3})->Args({1, 3})->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace slamkit
