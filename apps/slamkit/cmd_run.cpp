@@ -85,9 +85,11 @@ IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunPara
 int RunIsamCommand(const RunOptions& o) {
   const IsamRunParams params = ParamsOf(o);
   if (o.filter != "ekf" &&
-      params.ekf.association_method == AssociationMethod::kJointCompatibility) {
-    throw CLI::ValidationError("--filter", "jcbb is the EKF's association: FastSLAM associates "
-                               "each particle by maximum likelihood (--association ml) or known");
+      (params.ekf.association_method == AssociationMethod::kJointCompatibility ||
+       params.ekf.association_method == AssociationMethod::kGlobalNearestNeighbour)) {
+    throw CLI::ValidationError("--filter", "jcbb and gnn are the EKF's associations: FastSLAM "
+                               "associates each particle by maximum likelihood (--association "
+                               "ml) or known");
   }
   const IsamLog log = ReadIsamLog(o.isam);
   OutputDir output(o.out);
@@ -136,13 +138,15 @@ void RegisterRun(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
   CLI::Option* association = cmd->add_option("--association", o->association,
-                  "nn (nearest neighbour), ml (maximum likelihood), jcbb (joint compatibility, "
-                  "Neira & Tardos 2001) or known (the file's landmark ids); FastSLAM takes nn "
-                  "and ml both as each particle's maximum likelihood")
+                  "nn (nearest neighbour), ml (maximum likelihood), gnn (global nearest "
+                  "neighbour over the scan), jcbb (joint compatibility, Neira & Tardos 2001) or "
+                  "known (the file's landmark ids); FastSLAM takes nn and ml both as each "
+                  "particle's maximum likelihood")
       ->transform(CLI::CheckedTransformer(std::map<std::string, AssociationMethod>{
           {"nn", AssociationMethod::kNearestNeighbour},
           {"jcbb", AssociationMethod::kJointCompatibility},
           {"ml", AssociationMethod::kMaximumLikelihood},
+          {"gnn", AssociationMethod::kGlobalNearestNeighbour},
           {"known", AssociationMethod::kKnown}}))
       ->default_str("nn");
   cmd->add_flag("--known-association", o->known_association, "the same as --association known")

@@ -80,6 +80,7 @@ const char* AssociationName(AssociationMethod m) {
     case AssociationMethod::kKnown: return "known";
     case AssociationMethod::kJointCompatibility: return "joint-compatibility";
     case AssociationMethod::kMaximumLikelihood: return "maximum-likelihood";
+    case AssociationMethod::kGlobalNearestNeighbour: return "global-nearest-neighbour";
     case AssociationMethod::kNearestNeighbour: break;
   }
   return "nearest-neighbour";

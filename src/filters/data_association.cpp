@@ -1,5 +1,6 @@
 #include "slamkit/filters/data_association.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -92,6 +93,37 @@ std::vector<AssociationDecision> MaximumLikelihoodAssociator::Associate(
         }
         return d;
       });
+}
+
+std::vector<AssociationDecision> GlobalNearestNeighbourAssociator::Associate(
+    const AssociationContext& scan) {
+  const int n = scan.NumObservations();
+  std::vector<AssociationDecision> decisions(static_cast<std::size_t>(n));
+  pairs_.clear();
+  for (int i = 0; i < n; ++i) {
+    decisions[i].distance_chi2 = std::numeric_limits<double>::infinity();
+    for (const AssociationCandidate& c : scan.Candidates(i)) {
+      decisions[i].distance_chi2 = std::min(decisions[i].distance_chi2, c.distance_chi2);
+      if (c.distance_chi2 < params_.gate_chi2) pairs_.push_back({c.distance_chi2, i, c.landmark});
+    }
+  }
+  // Stable: equal distances keep observation, then landmark order.
+  std::stable_sort(pairs_.begin(), pairs_.end(), [](const GatedPair& a, const GatedPair& b) {
+    return a.distance_chi2 < b.distance_chi2;
+  });
+  std::vector<char> taken(static_cast<std::size_t>(scan.NumLandmarks()), 0);
+  for (const GatedPair& p : pairs_) {
+    AssociationDecision& d = decisions[p.observation];
+    if (d.kind == AssociationDecision::Kind::kMatched || taken[p.landmark]) continue;
+    d = {AssociationDecision::Kind::kMatched, p.landmark, p.distance_chi2};
+    taken[p.landmark] = 1;
+  }
+  for (AssociationDecision& d : decisions) {
+    if (d.kind == AssociationDecision::Kind::kMatched) continue;
+    d.kind = d.distance_chi2 >= params_.new_landmark_chi2 ? AssociationDecision::Kind::kNew
+                                                           : AssociationDecision::Kind::kDropped;
+  }
+  return decisions;
 }
 
 std::vector<AssociationDecision> KnownAssociation::Associate(const AssociationContext& scan) {

@@ -37,6 +37,8 @@ std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params) {
       return std::make_unique<JcbbAssociator>(params.association, params.jcbb);
     case AssociationMethod::kMaximumLikelihood:
       return std::make_unique<MaximumLikelihoodAssociator>(params.association);
+    case AssociationMethod::kGlobalNearestNeighbour:
+      return std::make_unique<GlobalNearestNeighbourAssociator>(params.association);
     case AssociationMethod::kNearestNeighbour: break;
   }
   return std::make_unique<NearestNeighbourAssociator>(params.association);
@@ -263,7 +265,8 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
   std::vector<char> taken(NumLandmarks() + observations.size(), 0);
   const int n = static_cast<int>(observations.size());
   if (params_.schedule == UpdateSchedule::kPerScan ||
-      params_.association_method == AssociationMethod::kJointCompatibility) {
+      params_.association_method == AssociationMethod::kJointCompatibility ||
+      params_.association_method == AssociationMethod::kGlobalNearestNeighbour) {
     RunPipeline(observations, taken, decisions);
   } else {
     for (int i = 0; i < n; ++i) RunPipeline(observations.subspan(i, 1), taken, decisions);

@@ -16,7 +16,7 @@ using config::Bound;
 using config::Section;
 
 // In AssociationMethod's order.
-const std::vector<std::string> kAssociations = {"nn", "known", "jcbb", "ml"};
+const std::vector<std::string> kAssociations = {"nn", "known", "jcbb", "ml", "gnn"};
 
 void ReadAssociation(const Section& s, EkfSlamParams* ekf) {
   ekf->association_method = static_cast<AssociationMethod>(config::ReadChoice(

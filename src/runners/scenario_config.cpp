@@ -125,7 +125,7 @@ void ReadEkf(const Section& root, EkfSlamParams* p) {
   s.Read("known_association", &known);
   // The names follow AssociationMethod's order.
   p->association_method = static_cast<AssociationMethod>(
-      ReadChoice(s, "association", {"nn", "known", "jcbb", "ml"},
+      ReadChoice(s, "association", {"nn", "known", "jcbb", "ml", "gnn"},
                  static_cast<int>(known ? AssociationMethod::kKnown
                                         : AssociationMethod::kNearestNeighbour)));
   if (s.Has("association") && s.Has("known_association") &&

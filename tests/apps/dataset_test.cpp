@@ -39,7 +39,7 @@ TEST(VictoriaPark, KnownAssociationMapsEveryFileLandmark) {
 // argument error.
 TEST(VictoriaPark, TheAssociationIsChosenByName) {
   if (!fs::exists(kVictoria)) GTEST_SKIP() << "no " << kVictoria;
-  for (const std::string name : {"nn", "ml", "jcbb", "known"}) {
+  for (const std::string name : {"nn", "ml", "gnn", "jcbb", "known"}) {
     const fs::path dir = FreshDir("victoria_" + name);
     const auto r = RunCli("run --isam " + kVictoria + " --association " + name +
                           " --no-figures --out " + dir.string());

@@ -88,5 +88,56 @@ TEST(MaximumLikelihood, TakesEachLandmarkOncePerScan) {
   EXPECT_EQ(d[1].landmark, 0);
 }
 
+// Two landmarks 1 m apart known exactly, sightings with σ = 0.2 m, the pose known.
+testing::TranslationScan PairOneMetreApart(const std::vector<Eigen::Vector2d>& z) {
+  std::vector<PointObservation> sightings;
+  for (const Eigen::Vector2d& zi : z) {
+    PointObservation o;
+    o.z = zi;
+    o.R = Eigen::Matrix2d::Identity() * 0.04;
+    sightings.push_back(o);
+  }
+  return testing::TranslationScan({{0.0, 0.0}, {1.0, 0.0}}, sightings, Eigen::Vector2d::Zero(),
+                                  Eigen::Matrix2d::Zero());
+}
+
+// The first sighting lies between the landmarks (d² 5.06 from landmark 0, 7.56 from 1), the
+// second on landmark 0 (d² 0.06). In scan order nearest neighbour gives landmark 0 to the first,
+// and the second, 22.6 from landmark 1, starts a duplicate of landmark 0; the scan's nearest
+// pairs first give each sighting its own landmark.
+TEST(GlobalNearestNeighbour, TheNearestPairGoesFirstWhateverTheScanOrder) {
+  const testing::TranslationScan scan = PairOneMetreApart({{0.45, 0.0}, {0.05, 0.0}});
+  NearestNeighbourAssociator nn;
+  const std::vector<AssociationDecision> in_order = nn.Associate(scan);
+  EXPECT_EQ(in_order[0].landmark, 0);
+  EXPECT_EQ(in_order[1].kind, AssociationDecision::Kind::kNew);
+  GlobalNearestNeighbourAssociator gnn;
+  const std::vector<AssociationDecision> d = gnn.Associate(scan);
+  ASSERT_EQ(d[0].kind, AssociationDecision::Kind::kMatched);
+  EXPECT_EQ(d[0].landmark, 1);
+  EXPECT_NEAR(d[0].distance_chi2, 0.55 * 0.55 / 0.04, 1e-12);
+  ASSERT_EQ(d[1].kind, AssociationDecision::Kind::kMatched);
+  EXPECT_EQ(d[1].landmark, 0);
+}
+
+// A sighting whose only landmark in the gate went to a nearer sighting of the scan is dropped (it
+// may be that landmark); a sighting beyond new_landmark_chi2 from every landmark is new, one
+// between the gates dropped.
+TEST(GlobalNearestNeighbour, ASightingATakenLandmarkCouldExplainIsNotMappedTwice) {
+  const testing::TranslationScan scan = PairOneMetreApart(
+      {{-0.4, 0.0}, {-0.05, 0.0}, {-0.7, 0.0}, {-0.9, 0.0}, {1.05, 0.0}});
+  NearestNeighbourAssociator nn;
+  EXPECT_EQ(nn.Associate(scan)[0].kind, AssociationDecision::Kind::kMatched);
+  GlobalNearestNeighbourAssociator gnn;
+  const std::vector<AssociationDecision> d = gnn.Associate(scan);
+  EXPECT_EQ(d[1].landmark, 0);
+  EXPECT_EQ(d[4].landmark, 1);
+  EXPECT_EQ(d[0].kind, AssociationDecision::Kind::kDropped);  // d² 4 from the taken landmark 0
+  EXPECT_NEAR(d[0].distance_chi2, 4.0, 1e-12);
+  EXPECT_EQ(d[2].kind, AssociationDecision::Kind::kDropped);  // d² 12.25: between the gates
+  EXPECT_EQ(d[3].kind, AssociationDecision::Kind::kNew);      // d² 20.25
+  EXPECT_EQ(d[3].landmark, -1);
+}
+
 }  // namespace
 }  // namespace slamkit

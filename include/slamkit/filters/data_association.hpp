@@ -109,6 +109,31 @@ class MaximumLikelihoodAssociator final : public Associator {
   std::vector<char> taken_;
 };
 
+// Global nearest neighbour, greedy (Bar-Shalom and Fortmann 1988; Cox 1993): the scan's
+// observation-landmark pairs within gate_chi2, taken in increasing distance, each observation and
+// each landmark at most once. Nearest neighbour in scan order lets an observation take the
+// landmark that a later, nearer one needs, which then starts a duplicate: in a dense cluster
+// (landmarks under a metre apart) that is how a map doubles its landmarks and the filter grows
+// over-confident. An observation left unmatched starts a landmark only when it lies beyond
+// new_landmark_chi2 from every landmark, taken ones included: a sighting that a landmark of the
+// scan could explain is dropped, not mapped twice. Needs the whole scan at once
+// (UpdateSchedule::kPerScan).
+class GlobalNearestNeighbourAssociator final : public Associator {
+ public:
+  explicit GlobalNearestNeighbourAssociator(const AssociationParams& params = {})
+      : params_(params) {}
+  std::vector<AssociationDecision> Associate(const AssociationContext& scan) override;
+
+ private:
+  struct GatedPair {
+    double distance_chi2;
+    int observation;
+    int landmark;
+  };
+  AssociationParams params_;
+  std::vector<GatedPair> pairs_;  // scratch, reused across scans
+};
+
 // The observation's id names its landmark (simulator truth, a data set's association): the
 // landmark created from that id, or a new one.
 class KnownAssociation final : public Associator {

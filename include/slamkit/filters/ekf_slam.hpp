@@ -30,6 +30,7 @@ enum class AssociationMethod {
   kKnown,             // each observation's id is its landmark (simulator truth, a data set's)
   kJointCompatibility,  // JCBB (Neira & Tardós 2001), over the whole scan (see `schedule`)
   kMaximumLikelihood,   // the most likely landmark within the gate (MaximumLikelihoodAssociator)
+  kGlobalNearestNeighbour,  // the scan's gated pairs, nearest first (per scan, as JCBB)
 };
 
 // When association runs relative to the updates of a scan.
@@ -46,7 +47,8 @@ struct EkfSlamParams {
   AssociationMethod association_method = AssociationMethod::kNearestNeighbour;
   AssociationParams association;
   JcbbParams jcbb;  // with kJointCompatibility
-  // kJointCompatibility needs the whole scan at once: with it the schedule is always kPerScan.
+  // kJointCompatibility and kGlobalNearestNeighbour need the whole scan at once: with them the
+  // schedule is always kPerScan.
   UpdateSchedule schedule = UpdateSchedule::kPerObservation;
   // A landmark farther than the sensor's range plus this margin from the estimated pose is not
   // considered for association (saves the Mahalanobis test on landmarks that cannot be seen).
