@@ -35,18 +35,24 @@ TEST(NearestNeighbour, NewWhenFarFromAllOrNoCandidates) {
   EXPECT_EQ(nn.Associate({}).kind, AssociationDecision::Kind::kNew);
 }
 
-// A landmark mapped once from afar (σ = 2 m) and a well-mapped one (σ = 0.1 m), both within the
-// gate of a sighting 0.7 m from the first and 0.3 m from the second: the first is nearer in
-// Mahalanobis distance (0.12 against 4.5), the second far more likely (ln|S| 2.8 against -7.8).
-testing::TranslationScan UncertainBesideCertain(const std::vector<Eigen::Vector2d>& z) {
+// Sightings at `z`, each with covariance variance · I.
+std::vector<PointObservation> Sightings(const std::vector<Eigen::Vector2d>& z, double variance) {
   std::vector<PointObservation> sightings;
   for (const Eigen::Vector2d& zi : z) {
     PointObservation o;
     o.z = zi;
-    o.R = Eigen::Matrix2d::Identity() * 0.01;
+    o.R = Eigen::Matrix2d::Identity() * variance;
     sightings.push_back(o);
   }
-  return testing::TranslationScan({{0.0, 0.0}, {1.0, 0.0}}, sightings, Eigen::Vector2d::Zero(),
+  return sightings;
+}
+
+// A landmark mapped once from afar (σ = 2 m) and a well-mapped one (σ = 0.1 m), both within the
+// gate of a sighting 0.7 m from the first and 0.3 m from the second: the first is nearer in
+// Mahalanobis distance (0.12 against 4.5), the second far more likely (ln|S| 2.8 against -7.8).
+testing::TranslationScan UncertainBesideCertain(const std::vector<Eigen::Vector2d>& z) {
+  return testing::TranslationScan({{0.0, 0.0}, {1.0, 0.0}}, Sightings(z, 0.01),
+                                  Eigen::Vector2d::Zero(),
                                   Eigen::Matrix2d::Zero(),
                                   {Eigen::Matrix2d::Identity() * 4.0,
                                    Eigen::Matrix2d::Identity() * 0.01});
@@ -90,15 +96,8 @@ TEST(MaximumLikelihood, TakesEachLandmarkOncePerScan) {
 
 // Two landmarks 1 m apart known exactly, sightings with σ = 0.2 m, the pose known.
 testing::TranslationScan PairOneMetreApart(const std::vector<Eigen::Vector2d>& z) {
-  std::vector<PointObservation> sightings;
-  for (const Eigen::Vector2d& zi : z) {
-    PointObservation o;
-    o.z = zi;
-    o.R = Eigen::Matrix2d::Identity() * 0.04;
-    sightings.push_back(o);
-  }
-  return testing::TranslationScan({{0.0, 0.0}, {1.0, 0.0}}, sightings, Eigen::Vector2d::Zero(),
-                                  Eigen::Matrix2d::Zero());
+  return testing::TranslationScan({{0.0, 0.0}, {1.0, 0.0}}, Sightings(z, 0.04),
+                                  Eigen::Vector2d::Zero(), Eigen::Matrix2d::Zero());
 }
 
 // The first sighting lies between the landmarks (d² 5.06 from landmark 0, 7.56 from 1), the
