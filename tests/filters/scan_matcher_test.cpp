@@ -71,6 +71,7 @@ MatchQuality ReferenceEvaluate(const OccupancyGrid& grid, const ScanPoints& poin
 
 TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
   const OccupancyGrid grid = RoomMap();
+  const OccupancyGrid empty;
   Rng rng(11);
   for (int window : {1, 3}) {
     ScanMatcherParams params;
@@ -87,6 +88,10 @@ TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
       ASSERT_NEAR(got.log_likelihood, want.log_likelihood, 1e-9 * points.ends.size());
       // The likelihood-only evaluation sums the same terms in the same order.
       ASSERT_EQ(ScanLogLikelihood(grid, points, pose, params), got.log_likelihood);
+      // The layered view searches cell by cell, never within one tile.
+      const MatchQuality layered = EvaluatePose(GridMapView(empty, &grid), points, pose, params);
+      ASSERT_EQ(layered.matched, want.matched);
+      ASSERT_NEAR(layered.score, want.score, 1e-9 * points.ends.size());
     }
   }
 }
