@@ -113,11 +113,10 @@ class MaximumLikelihoodAssociator final : public Associator {
 // observation-landmark pairs within gate_chi2, taken in increasing distance, each observation and
 // each landmark at most once. Nearest neighbour in scan order lets an observation take the
 // landmark that a later, nearer one needs, which then starts a duplicate: in a dense cluster
-// (landmarks under a metre apart) that is how a map doubles its landmarks and the filter grows
-// over-confident. An observation left unmatched starts a landmark only when it lies beyond
-// new_landmark_chi2 from every landmark, taken ones included: a sighting that a landmark of the
-// scan could explain is dropped, not mapped twice. Needs the whole scan at once
-// (UpdateSchedule::kPerScan).
+// (landmarks under a metre apart) that is how a map doubles its landmarks (docs/scenario.md). An
+// observation left unmatched starts a landmark only when it lies beyond new_landmark_chi2 from
+// every landmark, taken ones included: a sighting that a landmark of the scan could explain is
+// dropped, not mapped twice. Needs the whole scan at once (UpdateSchedule::kPerScan).
 class GlobalNearestNeighbourAssociator final : public Associator {
  public:
   explicit GlobalNearestNeighbourAssociator(const AssociationParams& params = {})
