@@ -70,12 +70,14 @@ IsamRunParams LoadIsamConfig(const std::filesystem::path& path, const IsamRunPar
   IsamRunParams p = defaults;
   ReadAssociation(s, &p.ekf);
   ReadFastSlam(s, &p.fastslam);
-  const Section o = s.Child("odometry", {"covariance_scale", "srr", "srt", "str", "stt"});
+  const Section o = s.Child("odometry", {"covariance_scale", "srr", "srt", "str", "stt",
+                                         "heading_drift_rad_per_m"});
   o.Read("covariance_scale", &p.odometry_covariance_scale, Bound::kPositive);
   o.Read("srr", &p.odometry_noise.srr, Bound::kNonNegative);
   o.Read("srt", &p.odometry_noise.srt, Bound::kNonNegative);
   o.Read("str", &p.odometry_noise.str, Bound::kNonNegative);
   o.Read("stt", &p.odometry_noise.stt, Bound::kNonNegative);
+  o.Read("heading_drift_rad_per_m", &p.odometry_heading_drift_rad_per_m, Bound::kFinite);
   const Section z =
       s.Child("sightings", {"covariance_scale", "sigma_range_m", "sigma_bearing_deg"});
   z.Read("covariance_scale", &p.sighting_covariance_scale, Bound::kPositive);
@@ -101,7 +103,8 @@ nlohmann::json IsamParamsJson(const IsamRunParams& p) {
             {"srr", p.odometry_noise.srr},
             {"srt", p.odometry_noise.srt},
             {"str", p.odometry_noise.str},
-            {"stt", p.odometry_noise.stt}}},
+            {"stt", p.odometry_noise.stt},
+            {"heading_drift_rad_per_m", p.odometry_heading_drift_rad_per_m}}},
           {"sightings",
            {{"covariance_scale", p.sighting_covariance_scale},
             {"sigma_range_m", p.sighting_sigma_range_m},

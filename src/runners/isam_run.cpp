@@ -60,6 +60,28 @@ Eigen::Matrix3d StepCovariance(const IsamStep& step, const IsamRunParams& params
          Eigen::Matrix3d(sigmas.cwiseProduct(sigmas).asDiagonal());
 }
 
+// The step's increment as the filter takes it: the file's, turned by the configured drift.
+Control StepControl(const IsamStep& step, const IsamRunParams& params) {
+  Eigen::Vector3d u = step.odometry;
+  if (params.odometry_heading_drift_rad_per_m != 0.0) {
+    u.z() += params.odometry_heading_drift_rad_per_m * std::hypot(u.x(), u.y());
+  }
+  return Control(u);
+}
+
+std::optional<HeadingDriftFit> FitFileOdometry(const IsamLog& log, const Trajectory& estimate,
+                                               const HeadingDriftParams& params) {
+  if (log.steps.size() < static_cast<std::size_t>(std::max(params.window_steps, 1))) {
+    return std::nullopt;
+  }
+  std::vector<Pose2> odometry;
+  odometry.reserve(log.steps.size());
+  for (const IsamStep& step : log.steps) {
+    odometry.emplace_back(step.odometry.x(), step.odometry.y(), step.odometry.z());
+  }
+  return FitHeadingDrift(odometry, estimate, params);
+}
+
 // One filter run over the log, with each decision paired with the file's id of its sighting.
 struct Pass {
   std::vector<std::pair<int, LandmarkId>> assigned;
@@ -93,7 +115,7 @@ Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& 
   pass.estimate.push_back({double(log.initial_pose_index), slam.PoseEstimate()});
   for (const IsamStep& step : log.steps) {
     const ControlCovariance q = StepCovariance(step, params);
-    slam.Predict(Control(step.odometry), 0.0, &q);
+    slam.Predict(StepControl(step, params), 0.0, &q);
     update(step.sightings);
     pass.estimate.push_back({double(step.pose_index), slam.PoseEstimate()});
   }
@@ -183,6 +205,7 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   out.sightings = pass.sightings;
   out.dropped = pass.dropped;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.odometry_heading_drift = FitFileOdometry(log, out.estimate, params.heading_drift_fit);
   out.association_agreement = AssociationAgreement(pass.assigned, out.sightings);
   if (params.score_against_merged_reference) {
     out.reference_merges = IndistinguishableReferenceIds(log, params);

@@ -171,6 +171,14 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
     metrics["association_agreement_merged"] = r.association_agreement_merged;
     metrics["reference_merges"] = r.reference_merges;
   }
+  if (r.odometry_heading_drift) {
+    const HeadingDriftFit& f = *r.odometry_heading_drift;
+    metrics["odometry_heading_drift"] = {{"fitted_rad_per_m", f.drift_rad_per_m},
+                                         {"rms_before_rad", f.rms_before_rad},
+                                         {"rms_after_rad", f.rms_after_rad},
+                                         {"windows", f.windows},
+                                         {"window_steps", params.heading_drift_fit.window_steps}};
+  }
   return metrics;
 }
 

@@ -93,6 +93,35 @@ TEST(IsamRunNoise, MotionProportionalOdometryNoiseAbsorbsAnUnderReportedTurn) {
   EXPECT_GT(loose.association_agreement, tight.association_agreement);
 }
 
+// Odometry that turns 0.03 rad right per metre where the car drives straight. A run with loose
+// noise estimates that drift from its own path; configured, the drift lets the file's tight
+// covariance map each tree once, where uncalibrated it starts duplicates.
+TEST(IsamRunHeadingDrift, TheFittedDriftCalibratesTheOdometry) {
+  std::vector<Eigen::Vector2d> trees;
+  for (int i = 0; i < 24; ++i) trees.push_back({2.0 + 1.5 * i, i % 2 ? 3.0 : -3.0});
+  IsamLog log = DrivePast(trees, 36, [](int tree, int) -> LandmarkId { return tree; });
+  for (IsamStep& step : log.steps) step.odometry.z() = -0.03;
+  IsamRunParams params;
+  params.heading_drift_fit.window_steps = 6;
+  params.odometry_noise = {0.02, 0.02, 0.02, 0.5};
+  const IsamRunResult loose = RunEkfSlamOnIsam(log, params);
+  ASSERT_TRUE(loose.odometry_heading_drift.has_value());
+  EXPECT_EQ(loose.odometry_heading_drift->windows, 6);
+  EXPECT_NEAR(loose.odometry_heading_drift->drift_rad_per_m, 0.03, 0.006);
+  EXPECT_LT(loose.odometry_heading_drift->rms_after_rad,
+            0.2 * loose.odometry_heading_drift->rms_before_rad);
+
+  params.odometry_noise = {0.0, 0.0, 0.0, 0.0};
+  const IsamRunResult tight = RunEkfSlamOnIsam(log, params);
+  params.odometry_heading_drift_rad_per_m = loose.odometry_heading_drift->drift_rad_per_m;
+  const IsamRunResult calibrated = RunEkfSlamOnIsam(log, params);
+  EXPECT_GT(tight.map.landmarks.size(), trees.size());
+  EXPECT_EQ(calibrated.map.landmarks.size(), trees.size());
+  EXPECT_EQ(calibrated.association_agreement, 1.0);
+  // The fit is of the file's odometry, whatever the run added: the same drift again.
+  EXPECT_NEAR(calibrated.odometry_heading_drift->drift_rad_per_m, 0.03, 0.006);
+}
+
 class IsamConfigFile : public testing::TempDirTest {};
 
 TEST_F(IsamConfigFile, ReadsEveryKeyAndWritesItBack) {
@@ -100,7 +129,7 @@ TEST_F(IsamConfigFile, ReadsEveryKeyAndWritesItBack) {
                                   "association: jcbb\ngate_chi2: 8\nnew_landmark_chi2: 20\n"
                                   "max_joint_tests: 500\n"
                                   "odometry: {covariance_scale: 2, srr: 0.1, srt: 0.2, str: 0.3, "
-                                  "stt: 0.4}\n"
+                                  "stt: 0.4, heading_drift_rad_per_m: -0.002}\n"
                                   "sightings: {covariance_scale: 3, sigma_range_m: 0.25, "
                                   "sigma_bearing_deg: 2}\n"
                                   "score_against_merged_reference: false\n"
@@ -114,6 +143,7 @@ TEST_F(IsamConfigFile, ReadsEveryKeyAndWritesItBack) {
   EXPECT_EQ(p.ekf.jcbb.max_joint_tests, 500);
   EXPECT_EQ(p.odometry_covariance_scale, 2.0);
   EXPECT_EQ(p.odometry_noise.stt, 0.4);
+  EXPECT_EQ(p.odometry_heading_drift_rad_per_m, -0.002);
   EXPECT_EQ(p.sighting_covariance_scale, 3.0);
   EXPECT_NEAR(p.sighting_sigma_bearing_rad, 2.0 * M_PI / 180.0, 1e-15);
   EXPECT_FALSE(p.score_against_merged_reference);
@@ -133,6 +163,9 @@ TEST_F(IsamConfigFile, MistakesNameTheFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error("sightings: {sigma_range_m: 0.3}\n").find("sigma_range_m"), std::string::npos);
   EXPECT_NE(error("odometry: {srq: 1}\n").find("srq"), std::string::npos);
+  EXPECT_NE(error("odometry: {heading_drift_rad_per_m: .nan}\n")
+                .find("odometry.heading_drift_rad_per_m"),
+            std::string::npos);
   EXPECT_NE(error("fastslam: {new_landmark_test: p0}\n").find("fastslam.new_landmark_test"),
             std::string::npos);
   EXPECT_NE(error("fastslam: {gate_chi2: 20, new_landmark_chi2: 10}\n")

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/heading_drift.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/filters/fastslam.hpp"
 #include "slamkit/io/isam_reader.hpp"
@@ -33,6 +34,13 @@ struct IsamRunParams {
   // the file's (scaled) covariance. A log may give every step the same covariance whatever the
   // vehicle did, where a wheel odometry's error grows with the motion. Zero: the file's alone.
   OdometryNoiseParams odometry_noise{0.0, 0.0, 0.0, 0.0};
+  // Added to each step's turn, times the step's distance: a calibration of the vehicle's
+  // odometry (a steering or wheel-radius offset turns it by a bias proportional to the distance),
+  // which noise covers badly. The run reports the value its own estimate suggests
+  // (IsamRunResult::odometry_heading_drift).
+  double odometry_heading_drift_rad_per_m = 0.0;
+  // Windows of the heading-drift fit reported with every run.
+  HeadingDriftParams heading_drift_fit;
   // When both are positive, each sighting's covariance is that of a range-bearing sensor with
   // these standard deviations (mapped to the sighting's Cartesian frame), in place of the
   // file's: a laser's tree detector errs along and across the beam, not equally in x and y.
@@ -56,6 +64,9 @@ struct IsamRunResult {
   // (with score_against_merged_reference; else 0 and empty).
   double association_agreement_merged = 0.0;
   std::vector<std::vector<LandmarkId>> reference_merges;
+  // The file's odometry (as written, before odometry_heading_drift_rad_per_m) against the
+  // estimate: the drift to configure. Unset for a log shorter than one window.
+  std::optional<HeadingDriftFit> odometry_heading_drift;
   double wall_time_s = 0.0;  // the SLAM pass alone
 };
 
