@@ -261,6 +261,12 @@ void PrintGridRun(const std::string& source, const GridRunResult& result, int pa
   fmt::print("  {:<28}{:>12.2f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("  {:<28}{:>12.1f}\n", "scans per second", result.scans / result.wall_time_s);
   fmt::print("  {:<28}{:>12.1f}\n", "peak memory [MiB]", PeakRssMib());
+  if (result.odometry_heading_drift) {
+    fmt::print("  {:<28}{:>12.5f}  (rms turn error per window {:.3f} -> {:.3f} rad)\n",
+               "odometry drift [rad/m]", result.odometry_heading_drift->drift_rad_per_m,
+               result.odometry_heading_drift->rms_before_rad,
+               result.odometry_heading_drift->rms_after_rad);
+  }
 }
 
 void PrintComparison(const std::string& against, const ReferenceComparison& c) {

@@ -28,6 +28,28 @@ void RbpfGridSlam::Initialise(const LaserScan& scan) {
 }
 
 bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
+  if (params_.odometry_heading_drift_rad_per_m == 0.0) return ProcessCalibratedScan(scan);
+  LaserScan calibrated = scan;
+  calibrated.odometry = CalibratedOdometry(scan.odometry, scans_.empty());
+  return ProcessCalibratedScan(calibrated);
+}
+
+// The log's odometry chain with each step turned by odometry_heading_drift_rad_per_m × its
+// distance; the first pose is the log's.
+Pose2 RbpfGridSlam::CalibratedOdometry(const Pose2& raw, bool first) {
+  if (first) {
+    last_calibrated_odometry_ = raw;
+  } else {
+    const Pose2 step = last_raw_odometry_.Between(raw);
+    const double turn = params_.odometry_heading_drift_rad_per_m * step.translation().norm();
+    last_calibrated_odometry_ =
+        last_calibrated_odometry_.Compose(Pose2(step.x(), step.y(), step.theta() + turn));
+  }
+  last_raw_odometry_ = raw;
+  return last_calibrated_odometry_;
+}
+
+bool RbpfGridSlam::ProcessCalibratedScan(const LaserScan& scan) {
   const int scan_index = static_cast<int>(scans_.size());
   scans_.push_back({scan.t_s, scan.odometry, Pose2()});
   if (scan_index == 0) {

@@ -5,10 +5,26 @@
 #include <chrono>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "slamkit/io/error.hpp"
+#include "slamkit/runners/outputs.hpp"
 
 namespace slamkit {
+namespace {
+
+std::optional<HeadingDriftFit> FitLogOdometry(const CarmenLog& log, const Trajectory& estimate) {
+  const HeadingDriftParams params;
+  if (log.scans.size() < static_cast<std::size_t>(params.window_steps) + 1) return std::nullopt;
+  std::vector<Pose2> steps;
+  steps.reserve(log.scans.size() - 1);
+  for (std::size_t i = 1; i < log.scans.size(); ++i) {
+    steps.push_back(log.scans[i - 1].odometry.Between(log.scans[i].odometry));
+  }
+  return FitHeadingDrift(steps, estimate, params);
+}
+
+}  // namespace
 
 GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
                           const std::function<void(int, int)>& progress) {
@@ -39,6 +55,7 @@ GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params
   }
   const int total = static_cast<int>(log.scans.size());
   out.scans = total;
+  out.odometry_heading_drift = FitLogOdometry(log, out.trajectory);
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -83,6 +100,9 @@ nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& par
                       {"scans_per_s", r.wall_time_s > 0 ? r.scans / r.wall_time_s : 0.0},
                       {"peak_rss_mib", peak_rss_mib}};
   AddErrorMetrics(relations, reference, j);
+  if (r.odometry_heading_drift) {
+    j["odometry_heading_drift"] = HeadingDriftJson(*r.odometry_heading_drift, {});
+  }
   return j;
 }
 

@@ -172,14 +172,18 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
     metrics["reference_merges"] = r.reference_merges;
   }
   if (r.odometry_heading_drift) {
-    const HeadingDriftFit& f = *r.odometry_heading_drift;
-    metrics["odometry_heading_drift"] = {{"fitted_rad_per_m", f.drift_rad_per_m},
-                                         {"rms_before_rad", f.rms_before_rad},
-                                         {"rms_after_rad", f.rms_after_rad},
-                                         {"windows", f.windows},
-                                         {"window_steps", params.heading_drift_fit.window_steps}};
+    metrics["odometry_heading_drift"] =
+        HeadingDriftJson(*r.odometry_heading_drift, params.heading_drift_fit);
   }
   return metrics;
+}
+
+nlohmann::json HeadingDriftJson(const HeadingDriftFit& fit, const HeadingDriftParams& params) {
+  return {{"fitted_rad_per_m", fit.drift_rad_per_m},
+          {"rms_before_rad", fit.rms_before_rad},
+          {"rms_after_rad", fit.rms_after_rad},
+          {"windows", fit.windows},
+          {"window_steps", params.window_steps}};
 }
 
 void WriteIsamOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,

@@ -150,6 +150,32 @@ TEST(RbpfGridSlam, ParticlesMoveByTheTrackedMotion) {
   EXPECT_GT(odometry, 5.0 * tracked) << "tracked " << tracked << " m, odometry " << odometry;
 }
 
+// Odometry that turns 0.02 rad per metre less than the robot: with no motion noise, no matching
+// and no tracking the particles move exactly by the odometry they are given, so calibrated by
+// the same drift the path is the truth, and uncalibrated it is not.
+TEST(RbpfGridSlam, TheHeadingDriftCalibrationTurnsTheOdometryBack) {
+  std::vector<Pose2> truth;
+  std::vector<LaserScan> log;
+  Pose2 pose(-5, -3, 0.0), odo;
+  for (int k = 0; k < 136; ++k) {
+    const double turn = (k % 34 >= 24) ? M_PI / 20 : 0.0;
+    const Pose2 step(turn > 0 ? 0.05 : 0.25, 0.0, turn);
+    pose = pose.Compose(step);
+    odo = odo.Compose(Pose2(step.x(), 0.0, step.theta() - 0.02 * step.x()));
+    truth.push_back(pose);
+    log.push_back(RoomScan(pose, 0.1 * k, odo));
+  }
+  RbpfGridSlamParams params = UpdatesEvery(0.5, 0.3);
+  params.motion = {.srr = 0.0, .srt = 0.0, .str = 0.0, .stt = 0.0};
+  params.matcher.min_score_fraction = 2.0;
+  params.tracking_mode = TrackingMode::kOff;
+  const double uncalibrated = MaxPositionError(RunFilter(log, 1, params), truth);
+  params.odometry_heading_drift_rad_per_m = 0.02;
+  const double calibrated = MaxPositionError(RunFilter(log, 1, params), truth);
+  EXPECT_LT(calibrated, 1e-9);
+  EXPECT_GT(uncalibrated, 0.5);
+}
+
 // The extra weight factor is called once per particle and update; a factor equal for every
 // particle changes no weight ratio and so nothing else, while one that condemns all particles but
 // one leaves that one's path.

@@ -19,6 +19,7 @@ TEST(GridConfig, TheShippedFileHoldsEveryDefault) {
   RbpfGridSlamParams other;
   other.particles = 7;
   other.motion.srt = 0.9;
+  other.odometry_heading_drift_rad_per_m = 0.01;
   other.tracking.refinements = 11;
   other.grid.log_odds_hit = 2.0f;
   other.proposal = ProposalScheme::kScanMatch;
@@ -38,6 +39,7 @@ TEST_F(GridConfigFile, TheParametersJsonLoadsBackToTheSameParameters) {
   p.matcher.coarse_pass = false;
   p.grid.resolution_m = 0.1;
   p.grid.max_cells = 12345;
+  p.odometry_heading_drift_rad_per_m = -0.0034;
   const fs::path path = WriteFile("params.yaml", GridParamsJson(p).dump(2));
   EXPECT_EQ(GridParamsJson(LoadGridConfig(path)), GridParamsJson(p));
 }
@@ -59,6 +61,7 @@ TEST_F(GridConfigFile, MistakesNameTheFileLineAndKey) {
       {"particles: 0\n", "g.yaml:1: key 'particles'"},
       {"motion:\n  srr: -1\n", "g.yaml:2: key 'motion.srr': must be >= 0"},
       {"motion: {sxx: 1}\n", "sxx"},
+      {"motion: {heading_drift_rad_per_m: .inf}\n", "key 'motion.heading_drift_rad_per_m'"},
       {"proposal: best\n", "key 'proposal': expected one of gaussian, scan_match, got 'best'"},
       {"tracking_mode: on\n", "key 'tracking_mode'"},
       {"resampling: {scheme: random}\n", "key 'resampling.scheme'"},

@@ -99,6 +99,11 @@ struct RbpfGridSlamParams {
   // (1.1°/m) rather than 0.05: over the suite's seeds 1-10, 59 of 60 runs within their goals
   // against 57, no log's mean worse by more than 1 mm (docs/grid_defaults.md).
   OdometryNoiseParams motion{.srr = 0.05, .srt = 0.05, .str = 0.02, .stt = 0.05};
+  // A calibration of the log's odometry: each step between scans turns by this times its
+  // distance more than the log says (a steering or wheel-radius offset turns a wheel odometry by a
+  // bias proportional to the distance, which noise covers badly over a long loop). `slamkit grid`
+  // reports the value its own estimate suggests (odometry_heading_drift in metrics.json).
+  double odometry_heading_drift_rad_per_m = 0.0;
   // The laser's usable range, the one setting of it: beams longer than this are cut when they go
   // into the maps (free space only) and are matched neither by the particles nor by the tracking.
   // 50 m against 30 m on the suite: 28 of 30 runs within their goals against 26; acapulco's open
@@ -209,6 +214,8 @@ class RbpfGridSlam {
   void CheckOutputHealth() const;
 
  private:
+  bool ProcessCalibratedScan(const LaserScan& scan);
+  Pose2 CalibratedOdometry(const Pose2& raw, bool first);
   ScanInsertionParams Insertion() const {
     return {.usable_range_m = params_.usable_range_m,
             .misses_spare_scan_hits = params_.misses_spare_scan_hits,
@@ -246,6 +253,9 @@ class RbpfGridSlam {
   };
   std::vector<PendingScan> pending_;
   Pose2 last_update_odometry_;
+  // The log's odometry at the last scan, and the calibrated chain's (odometry_heading_drift).
+  Pose2 last_raw_odometry_;
+  Pose2 last_calibrated_odometry_;
   int updates_ = 0;
   int resamples_ = 0;
   double typical_score_fraction_ = 0.0;  // the particles' mean match score / beams, last update

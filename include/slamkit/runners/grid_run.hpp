@@ -1,10 +1,12 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/heading_drift.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
 #include "slamkit/filters/rbpf_grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
@@ -19,6 +21,9 @@ struct GridRunResult {
   int updates = 0;
   int resamples = 0;
   double wall_time_s = 0.0;
+  // The log's odometry (as written, before odometry_heading_drift_rad_per_m) against the
+  // trajectory, over windows of 100 scans: the drift to configure. Unset below one window.
+  std::optional<HeadingDriftFit> odometry_heading_drift;
 };
 
 // `progress(done, total)` is called every few scans from the calling thread.
