@@ -267,6 +267,9 @@ void PrintGridRun(const std::string& source, const GridRunResult& result, int pa
                result.odometry_heading_drift->rms_before_rad,
                result.odometry_heading_drift->rms_after_rad);
   }
+  if (result.heading_drift_in_use_rad_per_m != 0.0) {
+    fmt::print("  {:<28}{:>12.5f}\n", "drift applied at the end", result.heading_drift_in_use_rad_per_m);
+  }
 }
 
 void PrintComparison(const std::string& against, const ReferenceComparison& c) {

@@ -1,5 +1,7 @@
 #include "slamkit/filters/rbpf_grid_slam.hpp"
 
+#include "slamkit/core/angle.hpp"
+
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
@@ -13,7 +15,8 @@ namespace slamkit {
 RbpfGridSlam::RbpfGridSlam(const RbpfGridSlamParams& params, GridWeightFactor extra_factor)
     : params_(params),
       extra_factor_(std::move(extra_factor)),
-      streams_(params.seed, std::max(params.particles, 1)) {}
+      streams_(params.seed, std::max(params.particles, 1)),
+      heading_drift_rad_per_m_(params.odometry_heading_drift_rad_per_m) {}
 
 RbpfGridSlam::~RbpfGridSlam() = default;
 
@@ -28,10 +31,35 @@ void RbpfGridSlam::Initialise(const LaserScan& scan) {
 }
 
 bool RbpfGridSlam::ProcessScan(const LaserScan& scan) {
-  if (params_.odometry_heading_drift_rad_per_m == 0.0) return ProcessCalibratedScan(scan);
+  if (!params_.estimate_heading_drift && heading_drift_rad_per_m_ == 0.0) {
+    return ProcessCalibratedScan(scan);
+  }
+  const bool first = scans_.empty();
   LaserScan calibrated = scan;
-  calibrated.odometry = CalibratedOdometry(scan.odometry, scans_.empty());
-  return ProcessCalibratedScan(calibrated);
+  calibrated.odometry = CalibratedOdometry(scan.odometry, first);
+  const bool updated = ProcessCalibratedScan(calibrated);
+  if (updated && params_.estimate_heading_drift) UpdateHeadingDrift(first);
+  return updated;
+}
+
+// Least squares of the turn the odometry misses on the distance driven, one sample per update:
+// the best particle's turn between its last two path poses (scan-matched, so locally close to
+// the true turn) less the log's odometry's turn over the same scans.
+void RbpfGridSlam::UpdateHeadingDrift(bool first) {
+  const PathTree::Node* leaf = particles_[BestParticle()].path.leaf();
+  if (!first && leaf != nullptr && leaf->parent != nullptr) {
+    const Pose2 odometry = last_update_raw_odometry_.Between(last_raw_odometry_);
+    const double distance_m = odometry.translation().norm();
+    const double missed_rad =
+        WrapAngle(leaf->parent->pose.Between(leaf->pose).theta() - odometry.theta());
+    drift_sum_dd_ += distance_m * distance_m;
+    drift_sum_de_ += distance_m * missed_rad;
+    const double prior_m2 = params_.heading_drift_prior_m2;
+    heading_drift_rad_per_m_ =
+        (prior_m2 * params_.odometry_heading_drift_rad_per_m + drift_sum_de_) /
+        (prior_m2 + drift_sum_dd_);
+  }
+  last_update_raw_odometry_ = last_raw_odometry_;
 }
 
 // The log's odometry chain with each step turned by odometry_heading_drift_rad_per_m × its
@@ -41,7 +69,7 @@ Pose2 RbpfGridSlam::CalibratedOdometry(const Pose2& raw, bool first) {
     last_calibrated_odometry_ = raw;
   } else {
     const Pose2 step = last_raw_odometry_.Between(raw);
-    const double turn = params_.odometry_heading_drift_rad_per_m * step.translation().norm();
+    const double turn = heading_drift_rad_per_m_ * step.translation().norm();
     last_calibrated_odometry_ =
         last_calibrated_odometry_.Compose(Pose2(step.x(), step.y(), step.theta() + turn));
   }

@@ -150,12 +150,15 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   p.resampling.scheme = ResamplingOf(
       config::ReadChoice(r, "scheme", kResampling, ResamplingIndex(p.resampling.scheme)));
   s.Read("likelihood_gain", &p.likelihood_gain, Bound::kPositive);
-  const Section m = s.Child("motion", {"srr", "srt", "str", "stt", "heading_drift_rad_per_m"});
+  const Section m = s.Child("motion", {"srr", "srt", "str", "stt", "heading_drift_rad_per_m",
+                                       "estimate_heading_drift", "heading_drift_prior_m2"});
   m.Read("srr", &p.motion.srr, Bound::kNonNegative);
   m.Read("srt", &p.motion.srt, Bound::kNonNegative);
   m.Read("str", &p.motion.str, Bound::kNonNegative);
   m.Read("stt", &p.motion.stt, Bound::kNonNegative);
   m.Read("heading_drift_rad_per_m", &p.odometry_heading_drift_rad_per_m, Bound::kFinite);
+  m.Read("estimate_heading_drift", &p.estimate_heading_drift);
+  m.Read("heading_drift_prior_m2", &p.heading_drift_prior_m2, Bound::kPositive);
   s.Read("usable_range_m", &p.usable_range_m, Bound::kPositive);
   s.Read("misses_spare_scan_hits", &p.misses_spare_scan_hits);
   ReadOptionalLimit(s, "no_return_ray_length_m", &p.no_return_ray_length_m);
@@ -192,7 +195,9 @@ nlohmann::json GridParamsJson(const RbpfGridSlamParams& p) {
           {"likelihood_gain", p.likelihood_gain},
           {"motion", {{"srr", p.motion.srr}, {"srt", p.motion.srt}, {"str", p.motion.str},
                       {"stt", p.motion.stt},
-                      {"heading_drift_rad_per_m", p.odometry_heading_drift_rad_per_m}}},
+                      {"heading_drift_rad_per_m", p.odometry_heading_drift_rad_per_m},
+                      {"estimate_heading_drift", p.estimate_heading_drift},
+                      {"heading_drift_prior_m2", p.heading_drift_prior_m2}}},
           {"usable_range_m", p.usable_range_m},
           {"misses_spare_scan_hits", p.misses_spare_scan_hits},
           {"no_return_ray_length_m", LimitJson(p.no_return_ray_length_m)},

@@ -46,6 +46,7 @@ GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params
     out.map = slam.BestMap();
     out.updates = slam.updates();
     out.resamples = slam.resamples();
+    out.heading_drift_in_use_rad_per_m = slam.heading_drift_rad_per_m();
   } catch (const std::invalid_argument& e) {  // the grid's parameters or the log's values
     throw InputError(std::string("grid: ") + e.what());
   } catch (const std::out_of_range& e) {  // a pose, odometry or laser offset outside the map
@@ -103,6 +104,7 @@ nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& par
   if (r.odometry_heading_drift) {
     j["odometry_heading_drift"] = HeadingDriftJson(*r.odometry_heading_drift, {});
   }
+  j["heading_drift_in_use_rad_per_m"] = r.heading_drift_in_use_rad_per_m;
   return j;
 }
 

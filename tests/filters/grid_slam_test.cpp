@@ -176,6 +176,33 @@ TEST(RbpfGridSlam, TheHeadingDriftCalibrationTurnsTheOdometryBack) {
   EXPECT_GT(uncalibrated, 0.5);
 }
 
+// The same drift estimated as the filter runs: the scan-matched turns give it back, whatever the
+// thread count.
+TEST(RbpfGridSlam, EstimatesTheOdometryHeadingDriftOnline) {
+  std::vector<LaserScan> log;
+  Pose2 pose(-5, -3, 0.0), odo;
+  for (int k = 0; k < 136; ++k) {
+    const double turn = (k % 34 >= 24) ? M_PI / 20 : 0.0;
+    const Pose2 step(turn > 0 ? 0.05 : 0.25, 0.0, turn);
+    pose = pose.Compose(step);
+    odo = odo.Compose(Pose2(step.x(), 0.0, step.theta() - 0.03 * step.x()));
+    log.push_back(RoomScan(pose, 0.1 * k, odo));
+  }
+  RbpfGridSlamParams params = UpdatesEvery(0.5, 0.3);
+  params.particles = 10;
+  params.estimate_heading_drift = true;
+  params.heading_drift_prior_m2 = 1.0;
+  double estimates[2];
+  for (int threads : {1, 2}) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    RbpfGridSlam slam(params);
+    for (const LaserScan& s : log) slam.ProcessScan(s);
+    estimates[threads - 1] = slam.heading_drift_rad_per_m();
+  }
+  EXPECT_NEAR(estimates[0], 0.03, 0.01);
+  EXPECT_EQ(estimates[0], estimates[1]);
+}
+
 // The extra weight factor is called once per particle and update; a factor equal for every
 // particle changes no weight ratio and so nothing else, while one that condemns all particles but
 // one leaves that one's path.

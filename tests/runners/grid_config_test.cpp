@@ -20,6 +20,8 @@ TEST(GridConfig, TheShippedFileHoldsEveryDefault) {
   other.particles = 7;
   other.motion.srt = 0.9;
   other.odometry_heading_drift_rad_per_m = 0.01;
+  other.estimate_heading_drift = true;
+  other.heading_drift_prior_m2 = 3.0;
   other.tracking.refinements = 11;
   other.grid.log_odds_hit = 2.0f;
   other.proposal = ProposalScheme::kScanMatch;
@@ -40,6 +42,8 @@ TEST_F(GridConfigFile, TheParametersJsonLoadsBackToTheSameParameters) {
   p.grid.resolution_m = 0.1;
   p.grid.max_cells = 12345;
   p.odometry_heading_drift_rad_per_m = -0.0034;
+  p.estimate_heading_drift = true;
+  p.heading_drift_prior_m2 = 20.0;
   const fs::path path = WriteFile("params.yaml", GridParamsJson(p).dump(2));
   EXPECT_EQ(GridParamsJson(LoadGridConfig(path)), GridParamsJson(p));
 }
@@ -62,6 +66,7 @@ TEST_F(GridConfigFile, MistakesNameTheFileLineAndKey) {
       {"motion:\n  srr: -1\n", "g.yaml:2: key 'motion.srr': must be >= 0"},
       {"motion: {sxx: 1}\n", "sxx"},
       {"motion: {heading_drift_rad_per_m: .inf}\n", "key 'motion.heading_drift_rad_per_m'"},
+      {"motion: {heading_drift_prior_m2: 0}\n", "key 'motion.heading_drift_prior_m2': must be > 0"},
       {"proposal: best\n", "key 'proposal': expected one of gaussian, scan_match, got 'best'"},
       {"tracking_mode: on\n", "key 'tracking_mode'"},
       {"resampling: {scheme: random}\n", "key 'resampling.scheme'"},

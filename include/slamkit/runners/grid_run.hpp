@@ -24,6 +24,9 @@ struct GridRunResult {
   // The log's odometry (as written, before odometry_heading_drift_rad_per_m) against the
   // trajectory, over windows of 100 scans: the drift to configure. Unset below one window.
   std::optional<HeadingDriftFit> odometry_heading_drift;
+  // The calibration the filter ended with: the configured one, or with estimate_heading_drift
+  // its running estimate.
+  double heading_drift_in_use_rad_per_m = 0.0;
 };
 
 // `progress(done, total)` is called every few scans from the calling thread.
