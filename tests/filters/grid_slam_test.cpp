@@ -153,18 +153,25 @@ TEST(RbpfGridSlam, ParticlesMoveByTheTrackedMotion) {
 // Odometry that turns 0.02 rad per metre less than the robot: with no motion noise, no matching
 // and no tracking the particles move exactly by the odometry they are given, so calibrated by
 // the same drift the path is the truth, and uncalibrated it is not.
-TEST(RbpfGridSlam, TheHeadingDriftCalibrationTurnsTheOdometryBack) {
-  std::vector<Pose2> truth;
+// The loop of LoopLog with odometry that is exact but for `missed_rad_per_m` of turn per metre
+// that it leaves out.
+std::vector<LaserScan> DriftingLoopLog(double missed_rad_per_m, std::vector<Pose2>* truth) {
   std::vector<LaserScan> log;
   Pose2 pose(-5, -3, 0.0), odo;
   for (int k = 0; k < 136; ++k) {
     const double turn = (k % 34 >= 24) ? M_PI / 20 : 0.0;
     const Pose2 step(turn > 0 ? 0.05 : 0.25, 0.0, turn);
     pose = pose.Compose(step);
-    odo = odo.Compose(Pose2(step.x(), 0.0, step.theta() - 0.02 * step.x()));
-    truth.push_back(pose);
+    odo = odo.Compose(Pose2(step.x(), 0.0, step.theta() - missed_rad_per_m * step.x()));
+    truth->push_back(pose);
     log.push_back(RoomScan(pose, 0.1 * k, odo));
   }
+  return log;
+}
+
+TEST(RbpfGridSlam, TheHeadingDriftCalibrationTurnsTheOdometryBack) {
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = DriftingLoopLog(0.02, &truth);
   RbpfGridSlamParams params = UpdatesEvery(0.5, 0.3);
   params.motion = {.srr = 0.0, .srt = 0.0, .str = 0.0, .stt = 0.0};
   params.matcher.min_score_fraction = 2.0;
@@ -179,15 +186,8 @@ TEST(RbpfGridSlam, TheHeadingDriftCalibrationTurnsTheOdometryBack) {
 // The same drift estimated as the filter runs: the scan-matched turns give it back, whatever the
 // thread count.
 TEST(RbpfGridSlam, EstimatesTheOdometryHeadingDriftOnline) {
-  std::vector<LaserScan> log;
-  Pose2 pose(-5, -3, 0.0), odo;
-  for (int k = 0; k < 136; ++k) {
-    const double turn = (k % 34 >= 24) ? M_PI / 20 : 0.0;
-    const Pose2 step(turn > 0 ? 0.05 : 0.25, 0.0, turn);
-    pose = pose.Compose(step);
-    odo = odo.Compose(Pose2(step.x(), 0.0, step.theta() - 0.03 * step.x()));
-    log.push_back(RoomScan(pose, 0.1 * k, odo));
-  }
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = DriftingLoopLog(0.03, &truth);
   RbpfGridSlamParams params = UpdatesEvery(0.5, 0.3);
   params.particles = 10;
   params.estimate_heading_drift = true;
