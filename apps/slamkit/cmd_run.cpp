@@ -121,12 +121,7 @@ int RunIsamCommand(const RunOptions& o) {
     fmt::print("  {:<28}{:>12.4f}  ({} groups of the file's ids merged)\n", "  merged reference",
                result.association_agreement_merged, result.reference_merges.size());
   }
-  if (result.odometry_heading_drift) {
-    fmt::print("  {:<28}{:>12.5f}  (rms turn error per window {:.3f} -> {:.3f} rad)\n",
-               "odometry drift [rad/m]", result.odometry_heading_drift->drift_rad_per_m,
-               result.odometry_heading_drift->rms_before_rad,
-               result.odometry_heading_drift->rms_after_rad);
-  }
+  PrintHeadingDrift(result.odometry_heading_drift);
   fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("wrote {}\n", o.out);
   return 0;

@@ -261,15 +261,18 @@ void PrintGridRun(const std::string& source, const GridRunResult& result, int pa
   fmt::print("  {:<28}{:>12.2f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("  {:<28}{:>12.1f}\n", "scans per second", result.scans / result.wall_time_s);
   fmt::print("  {:<28}{:>12.1f}\n", "peak memory [MiB]", PeakRssMib());
-  if (result.odometry_heading_drift) {
-    fmt::print("  {:<28}{:>12.5f}  (rms turn error per window {:.3f} -> {:.3f} rad)\n",
-               "odometry drift [rad/m]", result.odometry_heading_drift->drift_rad_per_m,
-               result.odometry_heading_drift->rms_before_rad,
-               result.odometry_heading_drift->rms_after_rad);
-  }
+  PrintHeadingDrift(result.odometry_heading_drift);
   if (result.heading_drift_in_use_rad_per_m != 0.0) {
-    fmt::print("  {:<28}{:>12.5f}\n", "drift applied at the end", result.heading_drift_in_use_rad_per_m);
+    fmt::print("  {:<28}{:>12.5f}\n", "drift applied at the end",
+               result.heading_drift_in_use_rad_per_m);
   }
+}
+
+void PrintHeadingDrift(const std::optional<HeadingDriftFit>& fit) {
+  if (!fit) return;
+  fmt::print("  {:<28}{:>12.5f}  (rms turn error per window {:.3f} -> {:.3f} rad)\n",
+             "odometry drift [rad/m]", fit->drift_rad_per_m, fit->rms_before_rad,
+             fit->rms_after_rad);
 }
 
 void PrintComparison(const std::string& against, const ReferenceComparison& c) {

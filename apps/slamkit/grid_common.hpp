@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,8 @@ int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& resu
 
 // The summary's first lines: counts, wall time, scans per second, peak memory.
 void PrintGridRun(const std::string& source, const GridRunResult& result, int particles);
+// The summary's line for a run's fit of its odometry's heading drift (none without a fit).
+void PrintHeadingDrift(const std::optional<HeadingDriftFit>& fit);
 
 // The summary's rows for a comparison with reference poses (`against`: "log poses", "truth").
 void PrintComparison(const std::string& against, const ReferenceComparison& comparison);

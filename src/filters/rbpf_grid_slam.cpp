@@ -1,7 +1,5 @@
 #include "slamkit/filters/rbpf_grid_slam.hpp"
 
-#include "slamkit/core/angle.hpp"
-
 #include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
@@ -9,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <utility>
+
+#include "slamkit/core/angle.hpp"
 
 namespace slamkit {
 
