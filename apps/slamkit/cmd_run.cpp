@@ -122,6 +122,12 @@ int RunIsamCommand(const RunOptions& o) {
                result.association_agreement_merged, result.reference_merges.size());
   }
   PrintHeadingDrift(result.odometry_heading_drift);
+  if (result.smoothed_reference) {
+    const IsamReferenceErrors& e = *result.smoothed_reference;
+    fmt::print("  {:<28}{:>12.3f}  (max {:.2f}; map {:.3f} m over {} landmarks)\n",
+               "vs smoothed reference [m]", e.ate.rmse_m, e.ate.max_m, e.map_rmse_m,
+               e.landmarks_compared);
+  }
   fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("wrote {}\n", o.out);
   return 0;

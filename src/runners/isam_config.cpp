@@ -66,7 +66,8 @@ IsamRunParams LoadIsamConfig(const std::filesystem::path& path, const IsamRunPar
   const YAML::Node yaml = config::LoadYamlFile(path);
   const Section s(yaml, path.string(), "",
                   {"association", "gate_chi2", "new_landmark_chi2", "max_joint_tests", "odometry",
-                   "sightings", "score_against_merged_reference", "fastslam"});
+                   "sightings", "score_against_merged_reference",
+                   "compare_with_smoothed_reference", "fastslam"});
   IsamRunParams p = defaults;
   ReadAssociation(s, &p.ekf);
   ReadFastSlam(s, &p.fastslam);
@@ -89,6 +90,7 @@ IsamRunParams LoadIsamConfig(const std::filesystem::path& path, const IsamRunPar
            "replaced) or both 0 (it is kept)");
   }
   s.Read("score_against_merged_reference", &p.score_against_merged_reference);
+  s.Read("compare_with_smoothed_reference", &p.compare_with_smoothed_reference);
   return p;
 }
 
@@ -110,6 +112,7 @@ nlohmann::json IsamParamsJson(const IsamRunParams& p) {
             {"sigma_range_m", p.sighting_sigma_range_m},
             {"sigma_bearing_deg", RadToDeg(p.sighting_sigma_bearing_rad)}}},
           {"score_against_merged_reference", p.score_against_merged_reference},
+          {"compare_with_smoothed_reference", p.compare_with_smoothed_reference},
           {"fastslam", FastSlamJson(p.fastslam)}};
 }
 

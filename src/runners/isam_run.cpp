@@ -8,6 +8,8 @@
 #include <numeric>
 #include <set>
 
+#include "isam_steps.hpp"
+#include "slamkit/eval/alignment.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/models/relative_point.hpp"
@@ -18,8 +20,13 @@ namespace {
 // One-to-one matching of our landmarks to the file's ids, greedily by the number of sightings
 // they share (largest first); the agreement is the share of all sightings that fall on matched
 // pairs. A file landmark split into two of ours, or two merged into one, loses the smaller part.
-double AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
-                            int sightings) {
+struct Agreement {
+  double share = 0.0;
+  std::map<int, LandmarkId> pairs;  // our landmark index → the file's id it was matched to
+};
+
+Agreement AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
+                               int sightings) {
   std::map<std::pair<int, LandmarkId>, int> shared;
   for (const auto& pair : assigned) {
     if (pair.first >= 0) ++shared[pair];
@@ -28,16 +35,17 @@ double AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assig
   for (const auto& [pair, count] : shared) by_count.push_back({count, pair});
   std::stable_sort(by_count.begin(), by_count.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
-  std::set<int> ours_taken;
+  Agreement out;
   std::set<LandmarkId> theirs_taken;
   int agree = 0;
   for (const auto& [count, pair] : by_count) {
-    if (ours_taken.count(pair.first) || theirs_taken.count(pair.second)) continue;
-    ours_taken.insert(pair.first);
+    if (out.pairs.count(pair.first) || theirs_taken.count(pair.second)) continue;
+    out.pairs[pair.first] = pair.second;
     theirs_taken.insert(pair.second);
     agree += count;
   }
-  return sightings > 0 ? double(agree) / double(sightings) : 1.0;
+  out.share = sightings > 0 ? double(agree) / double(sightings) : 1.0;
+  return out;
 }
 
 // The covariance of a Cartesian sighting `z` (x forward, y left) whose range and bearing have
@@ -50,23 +58,6 @@ Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_ra
   const Eigen::Vector2d variances(sigma_range_m * sigma_range_m,
                                   sigma_bearing_rad * sigma_bearing_rad);
   return J_xy_rb * variances.asDiagonal() * J_xy_rb.transpose();
-}
-
-// The step's odometry covariance: the file's, scaled, plus the motion-proportional part.
-Eigen::Matrix3d StepCovariance(const IsamStep& step, const IsamRunParams& params) {
-  const Pose2 delta(step.odometry.x(), step.odometry.y(), step.odometry.z());
-  const Eigen::Vector3d sigmas = OdometryNoiseSigmas(delta, params.odometry_noise);
-  return step.odometry_covariance * params.odometry_covariance_scale +
-         Eigen::Matrix3d(sigmas.cwiseProduct(sigmas).asDiagonal());
-}
-
-// The step's increment as the filter takes it: the file's, turned by the configured drift.
-Control StepControl(const IsamStep& step, const IsamRunParams& params) {
-  Eigen::Vector3d u = step.odometry;
-  if (params.odometry_heading_drift_rad_per_m != 0.0) {
-    u.z() += params.odometry_heading_drift_rad_per_m * std::hypot(u.x(), u.y());
-  }
-  return Control(u);
 }
 
 std::optional<HeadingDriftFit> FitFileOdometry(const IsamLog& log, const Trajectory& estimate,
@@ -97,11 +88,7 @@ Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& 
   auto update = [&](const std::vector<PointObservation>& sightings) {
     std::vector<PointObservation> input = sightings;
     for (PointObservation& s : input) {
-      if (params.sighting_sigma_range_m > 0.0 && params.sighting_sigma_bearing_rad > 0.0) {
-        s.R = RangeBearingCovariance(s.z, params.sighting_sigma_range_m,
-                                     params.sighting_sigma_bearing_rad);
-      }
-      s.R *= params.sighting_covariance_scale;
+      s.R = isam_detail::SightingCovariance(s, params);
       if (!known_association) s.id = kNoLandmark;  // ids only score the result
     }
     const auto decisions = slam.Update(input);
@@ -114,14 +101,33 @@ Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& 
   update(log.initial_sightings);
   pass.estimate.push_back({double(log.initial_pose_index), slam.PoseEstimate()});
   for (const IsamStep& step : log.steps) {
-    const ControlCovariance q = StepCovariance(step, params);
-    slam.Predict(StepControl(step, params), 0.0, &q);
+    const ControlCovariance q = isam_detail::StepCovariance(step, params);
+    slam.Predict(isam_detail::StepControl(step, params), 0.0, &q);
     update(step.sightings);
     pass.estimate.push_back({double(step.pose_index), slam.PoseEstimate()});
   }
   // Before anything is taken from the state: a run gone numerically bad gives no map of NaN.
   slam.CheckOutputHealth();
   return pass;
+}
+
+IsamReferenceErrors CompareWithReference(const IsamRunResult& run,
+                                         const std::map<int, LandmarkId>& pairs,
+                                         const IsamSmoothedReference& reference) {
+  IsamReferenceErrors out;
+  out.ate = AbsoluteTrajectoryError(run.estimate, reference.path);
+  std::vector<Eigen::Vector2d> ours, theirs;
+  for (const auto& [index, id] : pairs) {
+    const auto it = reference.landmarks.find(id);
+    if (index >= static_cast<int>(run.map.landmarks.size()) || it == reference.landmarks.end()) {
+      continue;
+    }
+    ours.push_back(run.map.landmarks[index].position_m);
+    theirs.push_back(it->second);
+  }
+  out.landmarks_compared = static_cast<int>(ours.size());
+  if (ours.size() >= 2) out.map_rmse_m = AlignPoints(ours, theirs).rmse_m;
+  return out;
 }
 
 // The pairs of file ids sighted from one pose: two distinct landmarks by the file's own account.
@@ -146,6 +152,34 @@ LandmarkId Root(std::map<LandmarkId, LandmarkId>& parent, LandmarkId id) {
 }
 
 }  // namespace
+
+namespace isam_detail {
+
+Eigen::Matrix3d StepCovariance(const IsamStep& step, const IsamRunParams& params) {
+  const Pose2 delta(step.odometry.x(), step.odometry.y(), step.odometry.z());
+  const Eigen::Vector3d sigmas = OdometryNoiseSigmas(delta, params.odometry_noise);
+  return step.odometry_covariance * params.odometry_covariance_scale +
+         Eigen::Matrix3d(sigmas.cwiseProduct(sigmas).asDiagonal());
+}
+
+Control StepControl(const IsamStep& step, const IsamRunParams& params) {
+  Eigen::Vector3d u = step.odometry;
+  if (params.odometry_heading_drift_rad_per_m != 0.0) {
+    u.z() += params.odometry_heading_drift_rad_per_m * std::hypot(u.x(), u.y());
+  }
+  return Control(u);
+}
+
+Eigen::Matrix2d SightingCovariance(const PointObservation& sighting, const IsamRunParams& params) {
+  Eigen::Matrix2d R = sighting.R;
+  if (params.sighting_sigma_range_m > 0.0 && params.sighting_sigma_bearing_rad > 0.0) {
+    R = RangeBearingCovariance(sighting.z, params.sighting_sigma_range_m,
+                               params.sighting_sigma_bearing_rad);
+  }
+  return R * params.sighting_covariance_scale;
+}
+
+}  // namespace isam_detail
 
 std::vector<std::vector<LandmarkId>> IndistinguishableReferenceIds(const IsamLog& log,
                                                                    const IsamRunParams& params) {
@@ -206,7 +240,11 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   out.dropped = pass.dropped;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.odometry_heading_drift = FitFileOdometry(log, out.estimate, params.heading_drift_fit);
-  out.association_agreement = AssociationAgreement(pass.assigned, out.sightings);
+  const Agreement agreement = AssociationAgreement(pass.assigned, out.sightings);
+  out.association_agreement = agreement.share;
+  if (params.compare_with_smoothed_reference) {
+    out.smoothed_reference = CompareWithReference(out, agreement.pairs, SmoothIsamLog(log, params));
+  }
   if (params.score_against_merged_reference) {
     out.reference_merges = IndistinguishableReferenceIds(log, params);
     std::map<LandmarkId, LandmarkId> merged;
@@ -216,7 +254,7 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
     for (auto& [ours, theirs] : pass.assigned) {
       if (merged.count(theirs)) theirs = merged[theirs];
     }
-    out.association_agreement_merged = AssociationAgreement(pass.assigned, out.sightings);
+    out.association_agreement_merged = AssociationAgreement(pass.assigned, out.sightings).share;
   }
   return out;
 }

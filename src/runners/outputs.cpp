@@ -175,6 +175,13 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
     metrics["odometry_heading_drift"] =
         HeadingDriftJson(*r.odometry_heading_drift, params.heading_drift_fit);
   }
+  if (r.smoothed_reference) {
+    const IsamReferenceErrors& e = *r.smoothed_reference;
+    metrics["smoothed_reference"] = {{"ate_rmse_m", e.ate.rmse_m},
+                                     {"ate_max_m", e.ate.max_m},
+                                     {"map_rmse_m", e.map_rmse_m},
+                                     {"landmarks_compared", e.landmarks_compared}};
+  }
   return metrics;
 }
 

@@ -1,10 +1,12 @@
 #pragma once
 
+#include <map>
 #include <optional>
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/heading_drift.hpp"
+#include "slamkit/eval/trajectory_errors.hpp"
 #include "slamkit/filters/ekf_slam.hpp"
 #include "slamkit/filters/fastslam.hpp"
 #include "slamkit/io/isam_reader.hpp"
@@ -49,6 +51,30 @@ struct IsamRunParams {
   // Also score against the file's ids with its indistinguishable ids merged
   // (IndistinguishableReferenceIds): one more EKF pass, with the file's association.
   bool score_against_merged_reference = true;
+  // Also compare the run with the batch least-squares solution of the log with the file's
+  // associations and this run's noise (SmoothIsamLog): the file has no ground truth.
+  bool compare_with_smoothed_reference = true;
+};
+
+// The log's path and landmarks by batch least squares with the file's associations
+// (SmoothLandmarkSlam), started from an EKF pass with them; odometry and sightings with the
+// noise, calibration and sighting model of `params`.
+struct IsamSmoothedReference {
+  Trajectory path;  // t = the pose's index in the file, as IsamRunResult::estimate
+  std::map<LandmarkId, Eigen::Vector2d> landmarks;  // by the file's id
+  double chi2_per_residual = 0.0;
+  int iterations = 0;
+};
+
+// A run against the smoothed reference. The estimate is causal (each pose before the sightings
+// that follow it) and the reference is not, so ate measures mostly how far a filter strays
+// before it closes its loops; map_rmse_m measures the map it ends with.
+struct IsamReferenceErrors {
+  AbsoluteTrajectoryErrorStats ate;  // after the best rigid alignment
+  // The final map's landmarks that the association score paired one-to-one with a file id,
+  // against the reference's landmarks of those ids, after the best rigid alignment.
+  double map_rmse_m = 0.0;
+  int landmarks_compared = 0;
 };
 
 // EKF-SLAM over an iSAM-format log (relative-point sightings, odometry with its own covariance).
@@ -67,6 +93,7 @@ struct IsamRunResult {
   // The file's odometry (as written, before odometry_heading_drift_rad_per_m) against the
   // estimate: the drift to configure. Unset for a log shorter than one window.
   std::optional<HeadingDriftFit> odometry_heading_drift;
+  std::optional<IsamReferenceErrors> smoothed_reference;  // with compare_with_smoothed_reference
   double wall_time_s = 0.0;  // the SLAM pass alone
 };
 
@@ -91,5 +118,8 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
 // one-to-one, a filter that maps that tree once would lose the smaller id's sightings.
 std::vector<std::vector<LandmarkId>> IndistinguishableReferenceIds(const IsamLog& log,
                                                                    const IsamRunParams& params);
+
+// std::invalid_argument (from SmoothLandmarkSlam) if the log cannot be smoothed.
+IsamSmoothedReference SmoothIsamLog(const IsamLog& log, const IsamRunParams& params);
 
 }  // namespace slamkit
