@@ -127,6 +127,8 @@ int RunIsamCommand(const RunOptions& o) {
     fmt::print("  {:<28}{:>12.3f}  (max {:.2f}; map {:.3f} m over {} landmarks)\n",
                "vs smoothed reference [m]", e.ate.rmse_m, e.ate.max_m, e.map_rmse_m,
                e.landmarks_compared);
+  } else if (!result.smoothed_reference_failure.empty()) {
+    fmt::print("  no smoothed reference: {}\n", result.smoothed_reference_failure);
   }
   fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("wrote {}\n", o.out);

@@ -7,6 +7,7 @@
 #include <memory>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 
 #include "isam_steps.hpp"
 #include "slamkit/eval/alignment.hpp"
@@ -243,7 +244,12 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   const Agreement agreement = AssociationAgreement(pass.assigned, out.sightings);
   out.association_agreement = agreement.share;
   if (params.compare_with_smoothed_reference) {
-    out.smoothed_reference = CompareWithReference(out, agreement.pairs, SmoothIsamLog(log, params));
+    try {
+      out.smoothed_reference =
+          CompareWithReference(out, agreement.pairs, SmoothIsamLog(log, params));
+    } catch (const std::invalid_argument& e) {
+      out.smoothed_reference_failure = e.what();
+    }
   }
   if (params.score_against_merged_reference) {
     out.reference_merges = IndistinguishableReferenceIds(log, params);

@@ -181,6 +181,8 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
                                      {"ate_max_m", e.ate.max_m},
                                      {"map_rmse_m", e.map_rmse_m},
                                      {"landmarks_compared", e.landmarks_compared}};
+  } else if (!r.smoothed_reference_failure.empty()) {
+    metrics["smoothed_reference"] = {{"error", r.smoothed_reference_failure}};
   }
   return metrics;
 }

@@ -151,6 +151,13 @@ TEST(IsamSmoothedReference, StraightensThePathTheOdometryBends) {
   EXPECT_EQ(run.smoothed_reference->landmarks_compared, static_cast<int>(trees.size()));
   EXPECT_LT(run.smoothed_reference->map_rmse_m, 0.1);
   EXPECT_EQ(run.smoothed_reference->ate.count, static_cast<int>(ref.path.size()));
+  // A sighting the smoother cannot weigh (a singular covariance) costs the comparison only.
+  IsamLog bad = log;
+  bad.steps[3].sightings[0].R.setZero();
+  const IsamRunResult kept = RunEkfSlamOnIsam(bad, params);
+  EXPECT_FALSE(kept.smoothed_reference.has_value());
+  EXPECT_NE(kept.smoothed_reference_failure.find("not positive definite"), std::string::npos);
+  EXPECT_EQ(kept.estimate.size(), ref.path.size());
   params.compare_with_smoothed_reference = false;
   EXPECT_FALSE(RunEkfSlamOnIsam(log, params).smoothed_reference.has_value());
 }

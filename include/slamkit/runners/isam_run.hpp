@@ -2,6 +2,7 @@
 
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
@@ -94,6 +95,8 @@ struct IsamRunResult {
   // estimate: the drift to configure. Unset for a log shorter than one window.
   std::optional<HeadingDriftFit> odometry_heading_drift;
   std::optional<IsamReferenceErrors> smoothed_reference;  // with compare_with_smoothed_reference
+  // Why the log could not be smoothed (the run is kept; smoothed_reference is then unset).
+  std::string smoothed_reference_failure;
   double wall_time_s = 0.0;  // the SLAM pass alone
 };
 
