@@ -91,8 +91,8 @@ void AddSighting(const SmootherSighting& s, const std::vector<Pose2>& poses,
 }
 
 // Each landmark at the mean of its sightings from the initial poses.
-std::map<LandmarkId, Eigen::Vector2d> InitialLandmarks(std::span<const Pose2> poses,
-                                                       std::span<const SmootherSighting> sightings) {
+std::map<LandmarkId, Eigen::Vector2d> InitialLandmarks(
+    std::span<const Pose2> poses, std::span<const SmootherSighting> sightings) {
   std::map<LandmarkId, std::pair<Eigen::Vector2d, int>> sum;
   for (const SmootherSighting& s : sightings) {
     auto& [p, n] = sum.try_emplace(s.landmark, Eigen::Vector2d::Zero(), 0).first->second;
@@ -153,7 +153,9 @@ LandmarkSmootherResult SmoothLandmarkSlam(std::span<const Pose2> initial_poses,
     NormalEquations eq;
     eq.b = Eigen::VectorXd::Zero(size);
     for (const SmootherOdometry& o : odometry) AddOdometry(o, out.poses, layout, eq);
-    for (const SmootherSighting& s : sightings) AddSighting(s, out.poses, out.landmarks, layout, eq);
+    for (const SmootherSighting& s : sightings) {
+      AddSighting(s, out.poses, out.landmarks, layout, eq);
+    }
     Eigen::SparseMatrix<double> H(size, size);
     H.setFromTriplets(eq.H.begin(), eq.H.end());
     const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(H);
