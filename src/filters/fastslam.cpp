@@ -24,6 +24,14 @@ FastSlam::FastSlam(const FastSlamParams& params, std::unique_ptr<MotionModel> mo
   if (!motion_ || !sensor_) throw std::invalid_argument("FastSlam: no motion or sensor model");
   if (params_.particles < 1) throw std::invalid_argument("FastSlam: particles must be >= 1");
   if (!(params_.index_cell_m > 0.0)) throw std::invalid_argument("FastSlam: index_cell_m <= 0");
+  if (params_.delayed_sampling && (params_.known_association || params_.negative_evidence)) {
+    throw std::invalid_argument(
+        "FastSlam: delayed_sampling needs each particle's own association, without negative "
+        "evidence");
+  }
+  if (params_.window_max_landmarks < 1) {
+    throw std::invalid_argument("FastSlam: window_max_landmarks must be >= 1");
+  }
   Reset(Pose2(), Eigen::Matrix3d::Zero());
 }
 
@@ -43,6 +51,9 @@ void FastSlam::ForEachParticle(F&& f) {
 void FastSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   FastSlamParticle first;
   first.pose = pose;
+  if (params_.delayed_sampling && params_.proposal == FastSlamProposal::kObservation) {
+    first.window_covariance = Eigen::Matrix3d::Zero();
+  }
   particles_.Assign(params_.particles, first);
   streams_ = ParticleStreams(params_.seed, particles_.size());
   step_ = 0;
@@ -166,7 +177,8 @@ std::vector<AssociationDecision> FastSlam::Report(const std::vector<ParticleUpda
     if (d.landmark < 0) continue;
     const int slot = d.landmark;
     d.landmark = IndexOf(slot);
-    if (const FastSlamLandmark* l = particles_[best].landmarks.Get(slot)) {
+    FastSlamLandmark scratch;
+    if (const FastSlamLandmark* l = Find(particles_[best], slot, scratch)) {
       last_named_[d.landmark] = Mapped(slot, *l);
     }
   }
@@ -219,14 +231,33 @@ LandmarkMap FastSlam::Map() const {
   const FastSlamParticle& best = particles_[particles_.Best()];
   LandmarkMap map;
   map.landmarks.reserve(slot_of_index_.size());
+  FastSlamLandmark scratch;
   for (std::size_t i = 0; i < slot_of_index_.size(); ++i) {
-    const FastSlamLandmark* l = best.landmarks.Get(slot_of_index_[i]);
+    const FastSlamLandmark* l = Find(best, slot_of_index_[i], scratch);
     map.landmarks.push_back(l ? Mapped(slot_of_index_[i], *l) : last_named_[i]);
   }
   best.landmarks.ForEach([&](int slot, const FastSlamLandmark& l) {
     if (index_of_slot_[slot] < 0) map.landmarks.push_back(Mapped(slot, l));
   });
+  for (const FastSlamParticle::WindowLandmark& w : best.window) {
+    if (w.slot >= 0 && index_of_slot_[w.slot] < 0 && Find(best, w.slot, scratch)) {
+      map.landmarks.push_back(Mapped(w.slot, scratch));
+    }
+  }
   return map;
+}
+
+const FastSlamLandmark* FastSlam::Find(const FastSlamParticle& p, int slot,
+                                       FastSlamLandmark& scratch) {
+  if (const FastSlamLandmark* l = p.landmarks.Get(slot)) return l;
+  for (std::size_t j = 0; j < p.window.size(); ++j) {
+    if (p.window[j].slot != slot) continue;
+    const int at = 3 + 2 * static_cast<int>(j);
+    scratch.mean = p.window[j].mean;
+    scratch.covariance = p.window_covariance.block<2, 2>(at, at);
+    return &scratch;
+  }
+  return nullptr;
 }
 
 void FastSlam::CheckOutputHealth() const {

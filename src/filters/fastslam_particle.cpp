@@ -14,16 +14,6 @@
 namespace slamkit::fastslam_detail {
 namespace {
 
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
-// A landmark of the particle near its pose, loaded once per scan and written back if changed.
-struct Candidate {
-  int slot = -1;
-  FastSlamLandmark landmark;
-  bool taken = false;    // a sighting of this scan was matched to it
-  bool changed = false;  // to be written back (or erased, at evidence ≤ 0)
-};
-
 // The particle's pose belief during a scan: a point for FastSLAM 1.0, a Gaussian refined by each
 // matched sighting for 2.0.
 struct PoseBelief {
@@ -62,26 +52,6 @@ Comparison Compare(const Candidate& c, const PoseBelief& x, const PointObservati
   out.distance_chi2 = out.nu.dot(llt.solve(out.nu));
   out.log_likelihood = -0.5 * out.distance_chi2 - std::log(2.0 * std::numbers::pi) -
                        0.5 * std::log(out.L.determinant());
-  return out;
-}
-
-// Montemerlo et al. 2003, Sec. 4: the likelihood p0 a sighting must beat to be matched, here the
-// density of N(0, R) at squared Mahalanobis distance `chi2`, so it scales with the sensor.
-double LogNewLandmarkLikelihood(const Eigen::Matrix2d& R, double chi2) {
-  return -0.5 * chi2 - std::log(2.0 * std::numbers::pi) - 0.5 * std::log(R.determinant());
-}
-
-std::vector<Candidate> GatherCandidates(const FastSlamParticle& p, const ScanInputs& scan) {
-  const double radius_m = scan.sensor.MaxRange() + scan.params.association_margin_m;
-  std::vector<int> slots;
-  SlotsNear(scan.grid, p.pose.translation(), radius_m, scan.params.index_cell_m, slots);
-  std::vector<Candidate> out;
-  for (int slot : slots) {
-    const FastSlamLandmark* l = p.landmarks.Get(slot);
-    if (l != nullptr && (l->mean - p.pose.translation()).norm() <= radius_m) {
-      out.push_back({slot, *l});
-    }
-  }
   return out;
 }
 
@@ -180,21 +150,6 @@ Pose2 SampleProposal(const PoseBelief& x, Rng& rng) {
   return Pose2(x.mean.vector() + Eigen::Vector3d(d));
 }
 
-// Montemerlo et al. 2002, Eqs. 4-6: the landmark's EKF update with the sighting, from the pose
-// the particle now holds.
-void UpdateLandmark(Candidate& c, const Pose2& x, const PointObservation& obs,
-                    const PointSensorModel& sensor) {
-  Eigen::Matrix2d H_m;
-  const Eigen::Vector2d z_pred = sensor.Predict(x, c.landmark.mean, nullptr, &H_m);
-  const KalmanCorrection<2, 2> k = KalmanUpdate<2, 2>(
-      c.landmark.mean, c.landmark.covariance, sensor.Innovation(obs.z, z_pred), H_m, obs.R);
-  if (!k.ok) return;
-  c.landmark.mean = k.mean;
-  c.landmark.covariance = k.covariance;
-  ++c.landmark.evidence;
-  c.changed = true;
-}
-
 // SPEC S2, Eq. 8 per particle: the new landmark by the inverse model, its covariance J R Jᵀ.
 FastSlamLandmark InitialiseLandmark(const Pose2& x, const PointObservation& obs,
                                     const PointSensorModel& sensor) {
@@ -219,17 +174,6 @@ void ApplyNegativeEvidence(std::vector<Candidate>& candidates, const Pose2& x,
     }
     --c.landmark.evidence;
     c.changed = true;
-  }
-}
-
-void WriteBack(FastSlamParticle& p, const std::vector<Candidate>& candidates) {
-  for (const Candidate& c : candidates) {
-    if (!c.changed) continue;
-    if (c.landmark.evidence <= 0) {
-      p.landmarks.Erase(c.slot);
-    } else {
-      p.landmarks.Set(c.slot, c.landmark);
-    }
   }
 }
 
@@ -273,6 +217,52 @@ std::vector<Match> Associate(std::vector<Candidate>& candidates, const FastSlamP
 
 }  // namespace
 
+// Montemerlo et al. 2003, Sec. 4: the likelihood p0 a sighting must beat to be matched, here the
+// density of N(0, R) at squared Mahalanobis distance `chi2`, so it scales with the sensor.
+double LogNewLandmarkLikelihood(const Eigen::Matrix2d& R, double chi2) {
+  return -0.5 * chi2 - std::log(2.0 * std::numbers::pi) - 0.5 * std::log(R.determinant());
+}
+
+std::vector<Candidate> GatherCandidates(const FastSlamParticle& p, const ScanInputs& scan) {
+  const double radius_m = scan.sensor.MaxRange() + scan.params.association_margin_m;
+  std::vector<int> slots;
+  SlotsNear(scan.grid, p.pose.translation(), radius_m, scan.params.index_cell_m, slots);
+  std::vector<Candidate> out;
+  for (int slot : slots) {
+    const FastSlamLandmark* l = p.landmarks.Get(slot);
+    if (l != nullptr && (l->mean - p.pose.translation()).norm() <= radius_m) {
+      out.push_back({slot, *l});
+    }
+  }
+  return out;
+}
+
+// Montemerlo et al. 2002, Eqs. 4-6: the landmark's EKF update with the sighting, from the pose
+// the particle now holds.
+void UpdateLandmark(Candidate& c, const Pose2& x, const PointObservation& obs,
+                    const PointSensorModel& sensor) {
+  Eigen::Matrix2d H_m;
+  const Eigen::Vector2d z_pred = sensor.Predict(x, c.landmark.mean, nullptr, &H_m);
+  const KalmanCorrection<2, 2> k = KalmanUpdate<2, 2>(
+      c.landmark.mean, c.landmark.covariance, sensor.Innovation(obs.z, z_pred), H_m, obs.R);
+  if (!k.ok) return;
+  c.landmark.mean = k.mean;
+  c.landmark.covariance = k.covariance;
+  ++c.landmark.evidence;
+  c.changed = true;
+}
+
+void WriteBack(FastSlamParticle& p, const std::vector<Candidate>& candidates) {
+  for (const Candidate& c : candidates) {
+    if (!c.changed) continue;
+    if (c.landmark.evidence <= 0) {
+      p.landmarks.Erase(c.slot);
+    } else {
+      p.landmarks.Set(c.slot, c.landmark);
+    }
+  }
+}
+
 void PredictParticle(FastSlamParticle& p, const MotionModel& motion, FastSlamProposal proposal,
                      const Control& u, double dt_s, const ControlCovariance& Q, Rng& rng) {
   if (proposal == FastSlamProposal::kMotion) {
@@ -287,9 +277,17 @@ void PredictParticle(FastSlamParticle& p, const MotionModel& motion, FastSlamPro
   p.pose = motion.Move(p.pose, u, dt_s, &J_x, &J_u);
   p.pose_covariance =
       J_x * p.pose_covariance * J_x.transpose() + J_u * Q * J_u.transpose();
+  if (p.window_covariance.size() > 0) {
+    PropagateWindow(p.window_covariance, J_x, J_u * Q * J_u.transpose());
+  }
 }
 
 void UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& rng, ParticleUpdate& out) {
+  out.created_in_window.assign(scan.observations.size(), -1);
+  if (p.window_covariance.size() > 0) {
+    UpdateWithWindow(p, scan, rng, out);
+    return;
+  }
   const bool need_nearby = !scan.params.known_association || scan.params.negative_evidence;
   std::vector<Candidate> candidates =
       need_nearby ? GatherCandidates(p, scan) : std::vector<Candidate>{};
@@ -316,7 +314,11 @@ void UpdateParticle(FastSlamParticle& p, const ScanInputs& scan, Rng& rng, Parti
 void InsertCreated(FastSlamParticle& p, const ParticleUpdate& update,
                    const std::vector<int>& slot_of_observation) {
   for (std::size_t i = 0; i < update.decisions.size(); ++i) {
-    if (update.decisions[i].kind == AssociationDecision::Kind::kNew) {
+    if (update.decisions[i].kind != AssociationDecision::Kind::kNew) continue;
+    const int in_window = i < update.created_in_window.size() ? update.created_in_window[i] : -1;
+    if (in_window >= 0) {
+      p.window[in_window].slot = slot_of_observation[i];
+    } else {
       p.landmarks.Set(slot_of_observation[i], update.created[i]);
     }
   }

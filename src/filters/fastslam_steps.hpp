@@ -4,6 +4,7 @@
 // control and with a scan, reading only what the filter shares read-only during the parallel loop.
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <unordered_map>
 #include <vector>
@@ -36,6 +37,32 @@ struct ScanInputs {
   const SlotGrid& grid;
   const std::unordered_map<LandmarkId, int>& slot_of_id;
 };
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// A landmark of the particle near its pose, loaded once per scan and written back if changed.
+struct Candidate {
+  int slot = -1;
+  FastSlamLandmark landmark;
+  bool taken = false;    // a sighting of this scan was matched to it
+  bool changed = false;  // to be written back (or erased, at evidence ≤ 0)
+};
+
+// Montemerlo et al. 2003, Sec. 4: the likelihood p0 a sighting must beat to be matched, here the
+// density of N(0, R) at squared Mahalanobis distance `chi2`, so it scales with the sensor.
+double LogNewLandmarkLikelihood(const Eigen::Matrix2d& R, double chi2);
+// The particle's landmarks within the sensor's range (plus the association margin) of its pose.
+std::vector<Candidate> GatherCandidates(const FastSlamParticle& p, const ScanInputs& scan);
+// Montemerlo et al. 2002, Eqs. 4-6: the landmark's EKF update with the sighting from pose `x`.
+void UpdateLandmark(Candidate& c, const Pose2& x, const PointObservation& obs,
+                    const PointSensorModel& sensor);
+// Stores the changed candidates in the particle's tree (erasing those at evidence ≤ 0).
+void WriteBack(FastSlamParticle& p, const std::vector<Candidate>& candidates);
+
+// delayed_sampling: the covariance of [pose; window landmarks] carried through one motion step.
+void PropagateWindow(Eigen::MatrixXd& P, const Eigen::Matrix3d& J_x, const Eigen::Matrix3d& noise);
+// delayed_sampling: UpdateParticle for a particle that holds a window (fastslam_window.cpp).
+void UpdateWithWindow(FastSlamParticle& p, const ScanInputs& scan, Rng& rng, ParticleUpdate& out);
 
 // The particle's prediction: a motion sample (FastSLAM 1.0) or its predicted pose Gaussian (2.0).
 void PredictParticle(FastSlamParticle& p, const MotionModel& motion, FastSlamProposal proposal,

@@ -34,9 +34,10 @@ void ReadAssociation(const Section& s, EkfSlamParams* ekf) {
 
 const std::vector<std::string> kNewLandmarkTests = {"likelihood", "mahalanobis"};
 
-void ReadFastSlam(const Section& parent, IsamFastSlamAssociation* f) {
+void ReadFastSlam(const Section& parent, IsamFastSlamSettings* f) {
   const Section s =
-      parent.Child("fastslam", {"new_landmark_test", "gate_chi2", "new_landmark_chi2"});
+      parent.Child("fastslam", {"new_landmark_test", "gate_chi2", "new_landmark_chi2",
+                                "delayed_sampling", "window_max_landmarks"});
   f->new_landmark_test = static_cast<NewLandmarkTest>(config::ReadChoice(
       s, "new_landmark_test", kNewLandmarkTests, static_cast<int>(f->new_landmark_test)));
   for (const auto& [key, value] : {std::pair{"gate_chi2", &f->gate_chi2},
@@ -46,15 +47,19 @@ void ReadFastSlam(const Section& parent, IsamFastSlamAssociation* f) {
     s.Read(key, &v, Bound::kPositive);
     *value = v;
   }
+  s.Read("delayed_sampling", &f->delayed_sampling);
+  s.Read("window_max_landmarks", &f->window_max_landmarks, 1);
   if (f->gate_chi2 && f->new_landmark_chi2 && *f->new_landmark_chi2 < *f->gate_chi2) {
     s.Fail("new_landmark_chi2", "new_landmark_chi2 must be >= gate_chi2");
   }
 }
 
 // Unset gates are left out (they follow the EKF's), so that the file reads back as it was.
-nlohmann::json FastSlamJson(const IsamFastSlamAssociation& f) {
+nlohmann::json FastSlamJson(const IsamFastSlamSettings& f) {
   nlohmann::json j = {
-      {"new_landmark_test", kNewLandmarkTests[static_cast<int>(f.new_landmark_test)]}};
+      {"new_landmark_test", kNewLandmarkTests[static_cast<int>(f.new_landmark_test)]},
+      {"delayed_sampling", f.delayed_sampling},
+      {"window_max_landmarks", f.window_max_landmarks}};
   if (f.gate_chi2) j["gate_chi2"] = *f.gate_chi2;
   if (f.new_landmark_chi2) j["new_landmark_chi2"] = *f.new_landmark_chi2;
   return j;

@@ -225,6 +225,9 @@ IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
   fastslam.new_landmark_test = params.fastslam.new_landmark_test;
   fastslam.gate_chi2 = params.fastslam.gate_chi2.value_or(ekf.gate_chi2);
   fastslam.new_landmark_chi2 = params.fastslam.new_landmark_chi2.value_or(ekf.new_landmark_chi2);
+  // Delayed sampling serves each particle's own association; with the file's ids it is not used.
+  fastslam.delayed_sampling = params.fastslam.delayed_sampling && !fastslam.known_association;
+  fastslam.window_max_landmarks = params.fastslam.window_max_landmarks;
   FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
                   std::make_unique<RelativePointModel>());
   return RunFilterOnIsam(filter, log, params, fastslam.known_association);

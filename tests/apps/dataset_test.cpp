@@ -55,6 +55,24 @@ TEST(VictoriaPark, TheAssociationIsChosenByName) {
   EXPECT_NE(bad.output.find("--association"), std::string::npos) << bad.output;
 }
 
+// Issue 11: FastSLAM 2.0 with 100 particles and the shipped configuration (delayed sampling, each
+// particle associating by itself) maps the park as the EKF does: 0.99 against the merged ids,
+// the landmark count within 5 % of the file's 151. Without delayed sampling it closed the park's
+// loops on three seeds of eight (docs/victoria_park.md); seeds 1-8 all pass with it.
+TEST(VictoriaPark, FastSlam2MapsTheParkWithoutTheFileIds) {
+  if (!fs::exists(kVictoria)) GTEST_SKIP() << "no " << kVictoria;
+  const fs::path dir = FreshDir("victoria_fastslam2");
+  const auto r = RunCli("run --isam " + kVictoria + " --config " + std::string(SLAMKIT_SOURCE_DIR) +
+                        "/configs/victoria_park.yaml --filter fastslam2 --particles 100 "
+                        "--association nn --seed 2 --no-figures --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto m = nlohmann::json::parse(ReadText(dir / "metrics.json"));
+  EXPECT_EQ(m["params"]["fastslam"]["delayed_sampling"], true);
+  EXPECT_GE(m["association_agreement_merged"].get<double>(), 0.99);
+  EXPECT_NEAR(m["landmarks_mapped"].get<double>(), 151.0, 0.05 * 151.0);
+  EXPECT_LT(m["smoothed_reference"]["map_rmse_m"].get<double>(), 3.0);
+}
+
 // Issue 11: the EKF with joint-compatibility association and the shipped configuration maps the
 // park without the file's ids. The file gives three trees two ids each (never sighted together,
 // within the gate of each other), so against its ids one-to-one a correct map scores about 0.97;

@@ -173,11 +173,16 @@ TEST_F(IsamConfigFile, ReadsEveryKeyAndWritesItBack) {
                                   "sightings: {covariance_scale: 3, sigma_range_m: 0.25, "
                                   "sigma_bearing_deg: 2}\n"
                                   "score_against_merged_reference: false\n"
-                                  "fastslam: {new_landmark_test: mahalanobis, gate_chi2: 15}\n");
+                                  "compare_with_smoothed_reference: false\n"
+                                  "fastslam: {new_landmark_test: mahalanobis, gate_chi2: 15, "
+                                  "delayed_sampling: true, window_max_landmarks: 25}\n");
   const IsamRunParams p = LoadIsamConfig(path);
   EXPECT_EQ(p.fastslam.new_landmark_test, NewLandmarkTest::kMahalanobis);
   EXPECT_EQ(p.fastslam.gate_chi2, 15.0);
   EXPECT_FALSE(p.fastslam.new_landmark_chi2.has_value());
+  EXPECT_TRUE(p.fastslam.delayed_sampling);
+  EXPECT_EQ(p.fastslam.window_max_landmarks, 25);
+  EXPECT_FALSE(p.compare_with_smoothed_reference);
   EXPECT_EQ(p.ekf.association_method, AssociationMethod::kJointCompatibility);
   EXPECT_EQ(p.ekf.association.gate_chi2, 8.0);
   EXPECT_EQ(p.ekf.jcbb.max_joint_tests, 500);
@@ -208,6 +213,10 @@ TEST_F(IsamConfigFile, MistakesNameTheFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(error("fastslam: {new_landmark_test: p0}\n").find("fastslam.new_landmark_test"),
             std::string::npos);
+  EXPECT_NE(error("fastslam: {window_max_landmarks: 0}\n").find("fastslam.window_max_landmarks"),
+            std::string::npos);
+  EXPECT_NE(error("fastslam: {delayed_sampling: 2}\n").find("fastslam.delayed_sampling"),
+            std::string::npos);
   EXPECT_NE(error("fastslam: {gate_chi2: 20, new_landmark_chi2: 10}\n")
                 .find("new_landmark_chi2 must be >= gate_chi2"),
             std::string::npos);
@@ -218,6 +227,7 @@ TEST(IsamConfig, TheShippedVictoriaParkFileLoads) {
       LoadIsamConfig(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / "victoria_park.yaml");
   EXPECT_EQ(p.ekf.association_method, AssociationMethod::kJointCompatibility);
   EXPECT_GT(p.sighting_sigma_range_m, 0.0);
+  EXPECT_TRUE(p.fastslam.delayed_sampling);
 }
 
 }  // namespace

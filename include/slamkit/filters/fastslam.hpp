@@ -68,6 +68,14 @@ struct FastSlamParams {
   // field of view centred on the heading (the PointSensorModel interface knows only the range).
   double negative_evidence_margin_m = 1.0;
   double negative_evidence_fov_rad = 2.0 * std::numbers::pi;
+  // FastSLAM 2.0 only. A particle draws its pose only when a scan matches a landmark mapped
+  // before its last draw (or its window is full); until then the pose and the landmarks mapped
+  // since are one Gaussian, updated as an EKF (delayed sampling: more of the state
+  // Rao-Blackwellised). Through new ground the particle then carries the path's drift in the
+  // correlations, as an EKF does, where one draw per step would have to hold the true path by
+  // chance. With every scan matching a known landmark it is FastSLAM 2.0.
+  bool delayed_sampling = false;
+  int window_max_landmarks = 40;  // a window that grows past this is drawn and emptied
   ResamplingParams resampling;  // N_eff / N below 0.5, low-variance (systematic) by default
   std::uint64_t seed = 1;
   // Particles processed in parallel (TBB) when > 1; the result is the same for any count.
@@ -88,6 +96,14 @@ struct FastSlamParticle {
   Eigen::Matrix3d pose_covariance = Eigen::Matrix3d::Zero();
   // Keyed by filter-wide landmark slot (see FastSlam), shared between copies.
   LandmarkTree<FastSlamLandmark> landmarks;
+  // delayed_sampling: the landmarks mapped since the pose was last drawn (slot -1 until the
+  // filter gives one), and the covariance of [pose; their positions] (size 3 + 2 × count).
+  struct WindowLandmark {
+    int slot = -1;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  };
+  std::vector<WindowLandmark> window;
+  Eigen::MatrixXd window_covariance;
 };
 
 namespace fastslam_detail {
@@ -97,6 +113,7 @@ namespace fastslam_detail {
 struct ParticleUpdate {
   std::vector<AssociationDecision> decisions;
   std::vector<FastSlamLandmark> created;
+  std::vector<int> created_in_window;  // per observation: its window index, or -1
   double log_weight = 0.0;
 };
 }  // namespace fastslam_detail
@@ -168,6 +185,9 @@ class FastSlam final : public LandmarkSlamFilter {
   Pose2 WeightedMean() const;
   Eigen::Matrix3d WeightedSpread(const Pose2& mean) const;
   MappedLandmark Mapped(int slot, const FastSlamLandmark& l) const;
+  // The particle's landmark of `slot`, from its tree or its window (into `scratch`), or null.
+  static const FastSlamLandmark* Find(const FastSlamParticle& p, int slot,
+                                      FastSlamLandmark& scratch);
 
   FastSlamParams params_;
   std::unique_ptr<MotionModel> motion_;

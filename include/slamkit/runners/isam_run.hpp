@@ -16,19 +16,22 @@
 
 namespace slamkit {
 
-// How FastSLAM's particles associate on a log (`slamkit run --filter fastslam1|fastslam2`). An
-// unset gate is the EKF's (IsamRunParams::ekf). A particle's prediction holds one step's pose
-// uncertainty, not the whole path's, so its innovations are wider than its covariance says
-// wherever the particles miss the true pose: a log may need wider gates than the EKF's.
-struct IsamFastSlamAssociation {
+// How FastSLAM's particles associate and sample on a log (`slamkit run --filter
+// fastslam1|fastslam2`). An unset gate is the EKF's (IsamRunParams::ekf). Without delayed
+// sampling a particle's prediction holds one step's pose uncertainty, not the whole path's, so
+// its innovations are wider than its covariance says wherever the particles miss the true pose:
+// a log may then need wider gates than the EKF's.
+struct IsamFastSlamSettings {
   NewLandmarkTest new_landmark_test = NewLandmarkTest::kLikelihood;
   std::optional<double> gate_chi2;
   std::optional<double> new_landmark_chi2;
+  bool delayed_sampling = false;  // FastSlamParams::delayed_sampling (2.0 only)
+  int window_max_landmarks = FastSlamParams{}.window_max_landmarks;
 };
 
 struct IsamRunParams {
   EkfSlamParams ekf;
-  IsamFastSlamAssociation fastslam;
+  IsamFastSlamSettings fastslam;
   // Multiplies every odometry covariance of the file (the file's are very small).
   double odometry_covariance_scale = 1.0;
   // Multiplies every sighting covariance of the file.
