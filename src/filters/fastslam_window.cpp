@@ -181,6 +181,7 @@ AssociationDecision DecideInWindow(FastSlamParticle& p, ScanState& state, int i,
     if (mahalanobis && nearest <= scan.params.new_landmark_chi2) return d;  // dropped
     d.kind = AssociationDecision::Kind::kNew;
     out.created_in_window[i] = AugmentWindow(p, obs, scan.sensor);
+    out.created[i].mean = p.window.back().mean;  // where the filter files the new slot
     state.window_taken.push_back(true);
     state.window_observation.push_back(i);
     return d;
