@@ -50,8 +50,7 @@ Comparison Compare(const Candidate& c, const PoseBelief& x, const PointObservati
   const Eigen::LLT<Eigen::Matrix2d> llt(out.L);
   if (llt.info() != Eigen::Success) return out;
   out.distance_chi2 = out.nu.dot(llt.solve(out.nu));
-  out.log_likelihood = -0.5 * out.distance_chi2 - std::log(2.0 * std::numbers::pi) -
-                       0.5 * std::log(out.L.determinant());
+  out.log_likelihood = LogGaussianDensity(out.distance_chi2, out.L);
   return out;
 }
 
@@ -219,8 +218,12 @@ std::vector<Match> Associate(std::vector<Candidate>& candidates, const FastSlamP
 
 // Montemerlo et al. 2003, Sec. 4: the likelihood p0 a sighting must beat to be matched, here the
 // density of N(0, R) at squared Mahalanobis distance `chi2`, so it scales with the sensor.
+double LogGaussianDensity(double chi2, const Eigen::Matrix2d& S) {
+  return -0.5 * chi2 - std::log(2.0 * std::numbers::pi) - 0.5 * std::log(S.determinant());
+}
+
 double LogNewLandmarkLikelihood(const Eigen::Matrix2d& R, double chi2) {
-  return -0.5 * chi2 - std::log(2.0 * std::numbers::pi) - 0.5 * std::log(R.determinant());
+  return LogGaussianDensity(chi2, R);
 }
 
 std::vector<Candidate> GatherCandidates(const FastSlamParticle& p, const ScanInputs& scan) {

@@ -48,6 +48,8 @@ struct Candidate {
   bool changed = false;  // to be written back (or erased, at evidence ≤ 0)
 };
 
+// ln of the density of a 2-D Gaussian of covariance S at squared Mahalanobis distance `chi2`.
+double LogGaussianDensity(double chi2, const Eigen::Matrix2d& S);
 // Montemerlo et al. 2003, Sec. 4: the likelihood p0 a sighting must beat to be matched, here the
 // density of N(0, R) at squared Mahalanobis distance `chi2`, so it scales with the sensor.
 double LogNewLandmarkLikelihood(const Eigen::Matrix2d& R, double chi2);

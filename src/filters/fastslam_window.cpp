@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <utility>
 #include <vector>
 
@@ -62,8 +61,7 @@ WindowComparison CompareWindow(const FastSlamParticle& p, int block, int candida
   const Eigen::LLT<Eigen::Matrix2d> llt(c.S);
   if (llt.info() != Eigen::Success) return c;
   c.distance_chi2 = c.nu.dot(llt.solve(c.nu));
-  c.log_likelihood = -0.5 * c.distance_chi2 - std::log(2.0 * std::numbers::pi) -
-                     0.5 * std::log(c.S.determinant());
+  c.log_likelihood = LogGaussianDensity(c.distance_chi2, c.S);
   return c;
 }
 

@@ -43,8 +43,6 @@ IsamSmoothedReference SmoothIsamLog(const IsamLog& log, const IsamRunParams& par
     out.path.push_back({start.estimate[k].t_s, smoothed.poses[k]});
   }
   out.landmarks = smoothed.landmarks;
-  out.chi2_per_residual = smoothed.residuals > 0 ? smoothed.chi2 / smoothed.residuals : 0.0;
-  out.iterations = smoothed.iterations;
   return out;
 }
 

@@ -120,7 +120,8 @@ struct ParticleUpdate {
 
 // FastSLAM 1.0 and 2.0 (Montemerlo et al. 2002, 2003): a particle filter over the robot's path,
 // each particle with its own 2×2 landmark EKFs in a copy-on-write tree, so that resampling copies
-// a particle in O(1) and a scan of k sightings costs O(N_particles · k · log N_landmarks).
+// a particle in O(1) (plus its window's O(w²) with delayed_sampling) and a scan of k sightings
+// costs O(N_particles · k · log N_landmarks).
 //
 // Landmark indexes. Particles associate on their own, so they may disagree on which sighting
 // made a landmark. The filter names landmarks by slot: the slot of a sighting that at least one

@@ -66,8 +66,6 @@ struct IsamRunParams {
 struct IsamSmoothedReference {
   Trajectory path;  // t = the pose's index in the file, as IsamRunResult::estimate
   std::map<LandmarkId, Eigen::Vector2d> landmarks;  // by the file's id
-  double chi2_per_residual = 0.0;
-  int iterations = 0;
 };
 
 // A run against the smoothed reference. The estimate is causal (each pose before the sightings
