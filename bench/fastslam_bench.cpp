@@ -18,10 +18,10 @@
 #include <benchmark/benchmark.h>
 
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/fastslam.hpp"
-#include "slamkit/filters/kalman_update.hpp"
-#include "slamkit/filters/particle_set.hpp"
-#include "slamkit/filters/particle_streams.hpp"
+#include "slamkit/filters/ekf/kalman_update.hpp"
+#include "slamkit/filters/fastslam/fastslam.hpp"
+#include "slamkit/filters/particles/particle_set.hpp"
+#include "slamkit/filters/particles/particle_streams.hpp"
 #include "slamkit/models/motion_sampling.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"

@@ -9,7 +9,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "slamkit/filters/rbpf_grid_slam.hpp"
+#include "slamkit/filters/grid/rbpf_grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 
 namespace slamkit {

@@ -14,10 +14,10 @@
 #include <vector>
 
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/block_ekf.hpp"
-#include "slamkit/filters/point_landmark_model.hpp"
-#include "slamkit/filters/selection.hpp"
-#include "slamkit/filters/selection_policies.hpp"
+#include "slamkit/filters/ekf/block_ekf.hpp"
+#include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/selection/selection.hpp"
+#include "slamkit/filters/selection/selection_policies.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 

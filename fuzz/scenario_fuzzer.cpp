@@ -8,7 +8,7 @@
 
 #include "fuzz_input.hpp"
 #include "slamkit/io/error.hpp"
-#include "slamkit/runners/scenario_config.hpp"
+#include "slamkit/runners/landmark/scenario_config.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;

@@ -8,7 +8,7 @@
 
 #include "fuzz_input.hpp"
 #include "slamkit/io/error.hpp"
-#include "slamkit/runners/suite_manifest.hpp"
+#include "slamkit/runners/grid/suite_manifest.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;

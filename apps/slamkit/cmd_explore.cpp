@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "explore_figures.hpp"
 #include "feature_outputs.hpp"
 #include "grid_common.hpp"
 #include "progress.hpp"
@@ -17,9 +18,8 @@
 #include "slamkit/io/floor_plan_reader.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/report/figures.hpp"
-#include "explore_figures.hpp"
-#include "slamkit/runners/explore_compare.hpp"
-#include "slamkit/runners/explore_run.hpp"
+#include "slamkit/runners/features/explore_compare.hpp"
+#include "slamkit/runners/features/explore_run.hpp"
 
 namespace slamkit::app {
 namespace {

@@ -13,9 +13,9 @@
 #include "log_input.hpp"
 #include "progress.hpp"
 #include "slamkit/io/writers.hpp"
-#include "slamkit/runners/feature_log_config.hpp"
-#include "slamkit/runners/feature_log_run.hpp"
-#include "slamkit/runners/grid_run.hpp"
+#include "slamkit/runners/features/feature_log_config.hpp"
+#include "slamkit/runners/features/feature_log_run.hpp"
+#include "slamkit/runners/grid/grid_run.hpp"
 
 namespace slamkit::app {
 namespace {

@@ -15,11 +15,11 @@
 #include "grid_common.hpp"
 #include "log_input.hpp"
 #include "progress.hpp"
-#include "slamkit/runners/grid_run.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
-#include "slamkit/runners/grid_config.hpp"
 #include "slamkit/io/writers.hpp"
+#include "slamkit/runners/grid/grid_config.hpp"
+#include "slamkit/runners/grid/grid_run.hpp"
 
 namespace slamkit::app {
 namespace {

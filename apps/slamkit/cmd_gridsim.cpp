@@ -15,12 +15,12 @@
 #include "commands.hpp"
 #include "grid_common.hpp"
 #include "progress.hpp"
-#include "slamkit/runners/grid_sim.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/waypoints_reader.hpp"
 #include "slamkit/io/writers.hpp"
+#include "slamkit/runners/grid/grid_sim.hpp"
 #include "slamkit/sim/maze_route.hpp"
 
 namespace slamkit::app {

@@ -13,11 +13,11 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/report/figures.hpp"
-#include "slamkit/runners/active_monte_carlo.hpp"
-#include "slamkit/runners/active_outputs.hpp"
-#include "slamkit/runners/filter_choice.hpp"
-#include "slamkit/runners/outputs.hpp"
-#include "slamkit/runners/scenario_config.hpp"
+#include "slamkit/runners/landmark/active_monte_carlo.hpp"
+#include "slamkit/runners/landmark/active_outputs.hpp"
+#include "slamkit/runners/landmark/filter_choice.hpp"
+#include "slamkit/runners/landmark/outputs.hpp"
+#include "slamkit/runners/landmark/scenario_config.hpp"
 
 namespace slamkit::app {
 namespace {

@@ -12,12 +12,12 @@
 #include "grid_common.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
-#include "slamkit/filters/fastslam.hpp"
+#include "slamkit/filters/fastslam/fastslam.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/report/figures.hpp"
-#include "slamkit/runners/filter_choice.hpp"
-#include "slamkit/runners/isam_config.hpp"
-#include "slamkit/runners/outputs.hpp"
+#include "slamkit/runners/landmark/filter_choice.hpp"
+#include "slamkit/runners/landmark/isam_config.hpp"
+#include "slamkit/runners/landmark/outputs.hpp"
 
 namespace slamkit::app {
 namespace {

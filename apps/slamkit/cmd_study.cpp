@@ -11,10 +11,10 @@
 #include "grid_common.hpp"
 #include "progress.hpp"
 #include "slamkit/core/cpu.hpp"
-#include "slamkit/runners/active_outputs.hpp"
-#include "slamkit/runners/scenario_config.hpp"
-#include "slamkit/runners/study.hpp"
-#include "slamkit/runners/study_outputs.hpp"
+#include "slamkit/runners/landmark/active_outputs.hpp"
+#include "slamkit/runners/landmark/scenario_config.hpp"
+#include "slamkit/runners/landmark/study.hpp"
+#include "slamkit/runners/landmark/study_outputs.hpp"
 #include "study_figures.hpp"
 
 namespace slamkit::app {

@@ -31,8 +31,8 @@
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
 #include "slamkit/report/figures.hpp"
-#include "slamkit/runners/suite_manifest.hpp"
-#include "slamkit/runners/suite_summary.hpp"
+#include "slamkit/runners/grid/suite_manifest.hpp"
+#include "slamkit/runners/grid/suite_summary.hpp"
 
 extern char** environ;
 

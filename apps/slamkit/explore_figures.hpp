@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "slamkit/report/figures.hpp"
-#include "slamkit/runners/explore_compare.hpp"
+#include "slamkit/runners/features/explore_compare.hpp"
 
 namespace slamkit::app {
 

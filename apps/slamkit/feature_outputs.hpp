@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/runners/explore_run.hpp"
+#include "slamkit/runners/features/explore_run.hpp"
 
 namespace slamkit::app {
 

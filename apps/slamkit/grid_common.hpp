@@ -7,9 +7,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "slamkit/filters/ekf_slam.hpp"
-#include "slamkit/runners/grid_run.hpp"
-#include "slamkit/filters/rbpf_grid_slam.hpp"
+#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/grid/rbpf_grid_slam.hpp"
+#include "slamkit/runners/grid/grid_run.hpp"
 
 namespace slamkit::app {
 

@@ -10,7 +10,7 @@
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
-#include "slamkit/runners/grid_run.hpp"
+#include "slamkit/runners/grid/grid_run.hpp"
 
 namespace slamkit::app {
 

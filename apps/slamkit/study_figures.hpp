@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "slamkit/report/figures.hpp"
-#include "slamkit/runners/study.hpp"
+#include "slamkit/runners/landmark/study.hpp"
 
 namespace slamkit::app {
 

@@ -8,7 +8,7 @@
 
 #include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/rbpf_grid_slam.hpp"
+#include "slamkit/filters/grid/rbpf_grid_slam.hpp"
 
 using namespace slamkit;
 

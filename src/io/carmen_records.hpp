@@ -9,9 +9,9 @@
 #include <string>
 #include <utility>
 
+#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/core/laser_scan.hpp"
 #include "text_records.hpp"
 
 namespace slamkit::carmen {

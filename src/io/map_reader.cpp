@@ -21,8 +21,8 @@
 
 #include <Eigen/Core>
 
-#include "slamkit/io/error.hpp"
 #include "slamkit/io/config_section.hpp"
+#include "slamkit/io/error.hpp"
 
 namespace slamkit {
 namespace {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/relations_reader.hpp"
 #include "text_records.hpp"
 
 namespace slamkit {

@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "slamkit/core/pose2.hpp"
 #include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/pose2.hpp"
 
 namespace slamkit::testing {
 

@@ -7,7 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
-#include "slamkit/filters/data_association.hpp"
+#include "slamkit/filters/association/data_association.hpp"
 
 namespace slamkit::testing {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "slamkit/io/carmen_reader.hpp"
-#include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/relations_reader.hpp"
 
 #include "common/input_error.hpp"
 #include "common/temp_dir.hpp"

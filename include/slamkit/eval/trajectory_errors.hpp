@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "slamkit/core/trajectory.hpp"
 #include "slamkit/core/relation.hpp"
+#include "slamkit/core/trajectory.hpp"
 
 namespace slamkit {
 

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/pose2.hpp"
-#include "slamkit/filters/data_association.hpp"
+#include "slamkit/filters/association/data_association.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/models/motion_model.hpp"
 #include "slamkit/models/point_sensor.hpp"

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "slamkit/core/trajectory.hpp"
 #include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/trajectory.hpp"
 
 namespace slamkit {
 

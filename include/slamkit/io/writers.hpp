@@ -4,9 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "slamkit/core/landmark_world.hpp"
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/maps/landmark_map.hpp"
-#include "slamkit/core/landmark_world.hpp"
 
 namespace slamkit {
 

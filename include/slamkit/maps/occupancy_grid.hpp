@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "slamkit/core/pose2.hpp"
 #include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/pose2.hpp"
 
 namespace slamkit {
 

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/data_association.hpp"
+#include "slamkit/filters/association/data_association.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/planning/kmeans.hpp"
 

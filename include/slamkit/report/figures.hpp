@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "slamkit/core/trajectory.hpp"
 #include "slamkit/core/landmark_world.hpp"
+#include "slamkit/core/trajectory.hpp"
 #include "slamkit/maps/landmark_map.hpp"
 #include "slamkit/maps/occupancy_image.hpp"
 

@@ -3,10 +3,10 @@
 #include <numbers>
 #include <vector>
 
+#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/rng.hpp"
 #include "slamkit/core/trajectory.hpp"
-#include "slamkit/core/laser_scan.hpp"
 #include "slamkit/sim/controller.hpp"
 #include "slamkit/sim/floor_plan.hpp"
 

@@ -1,0 +1,41 @@
+#pragma once
+
+#include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/maps/occupancy_grid.hpp"
+
+namespace slamkit {
+
+// What a grid SLAM reports besides its estimate, for metrics.json and the console.
+struct GridSlamStats {
+  int updates = 0;    // scans that changed the estimate (the others only extend the path)
+  int resamples = 0;  // a particle filter's resampling steps; 0 for a filter without particles
+  // The odometry heading calibration in use at the end: the configured one, or its estimate.
+  double heading_drift_in_use_rad_per_m = 0.0;
+};
+
+// The interface every laser SLAM on occupancy grids offers to the runners (a log, the suite, a
+// simulated run), so that they take any of them: scans in, with their odometry; the best pose,
+// path and map out; a health check before output. Implemented by RbpfGridSlam; a filter is made
+// from a config by MakeGridSlam (filters/grid/grid_slam_factory.hpp).
+class GridSlam {
+ public:
+  virtual ~GridSlam() = default;
+
+  // Takes the next scan (with its odometry, in the log's order); returns whether the estimate
+  // was updated on it.
+  virtual bool ProcessScan(const LaserScan& scan) = 0;
+  // The best estimate of the pose at the last scan.
+  virtual Pose2 CurrentPose() = 0;
+  // The best estimate's path: one pose per processed scan, t as the scan's.
+  virtual Trajectory BestTrajectory() = 0;
+  // The best estimate's map.
+  virtual const OccupancyGrid& BestMap() const = 0;
+  virtual GridSlamStats Stats() const = 0;
+  // Throws NumericalError naming what failed if the estimate is not healthy (non-finite poses,
+  // weights that cannot normalise), unless its params switched the check off.
+  virtual void CheckOutputHealth() const = 0;
+};
+
+}  // namespace slamkit

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <functional>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/heading_drift.hpp"
+#include "slamkit/eval/trajectory_errors.hpp"
+#include "slamkit/filters/grid/rbpf_grid_slam.hpp"
+#include "slamkit/io/carmen_reader.hpp"
+
+namespace slamkit {
+
+// RbpfGridSlam over a whole CARMEN log.
+struct GridRunResult {
+  Trajectory trajectory;  // one pose per scan of the log, t as in the log
+  OccupancyGrid map;      // the best particle's
+  int scans = 0;
+  int updates = 0;
+  int resamples = 0;
+  double wall_time_s = 0.0;
+  // The log's odometry (as written, before odometry_heading_drift_rad_per_m) against the
+  // trajectory, over windows of 100 scans: the drift to configure. Unset below one window.
+  std::optional<HeadingDriftFit> odometry_heading_drift;
+  // The calibration the filter ended with: the configured one, or with estimate_heading_drift
+  // its running estimate.
+  double heading_drift_in_use_rad_per_m = 0.0;
+};
+
+// `progress(done, total)` is called every few scans from the calling thread.
+GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
+                          const std::function<void(int, int)>& progress = {});
+
+// metrics.json of a grid run (README's output contract); `relations` and `reference` may be null.
+nlohmann::json GridMetrics(const GridRunResult& result, const RbpfGridSlamParams& params,
+                           const RelationErrorStats* relations,
+                           const ReferenceComparison* reference, double peak_rss_mib);
+
+// The error keys of metrics.json (relations_*, ate_*, rpe_*) for the evaluations given (either
+// may be null).
+void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceComparison* reference,
+                     nlohmann::json& metrics);
+
+// The poses a log gives with its scans (corrected in *-corrected logs), one per scan.
+Trajectory LoggedTrajectory(const CarmenLog& log);
+// The raw odometry at each scan: the baseline every estimate must beat.
+Trajectory OdometryTrajectory(const CarmenLog& log);
+
+// Peak resident memory of this process so far, in MiB.
+double PeakRssMib();
+
+}  // namespace slamkit

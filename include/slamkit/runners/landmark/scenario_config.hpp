@@ -1,0 +1,36 @@
+#pragma once
+
+#include <filesystem>
+
+#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/planning/swslam_planner.hpp"
+#include "slamkit/sim/scenario.hpp"
+
+namespace slamkit {
+
+// Who picks the next waypoint in a closed-loop run (runners/active_run.hpp): the route alone, or
+// SWSLAM's self-detected waypoints (SPEC S2).
+enum class PlannerKind { kRoute, kSwslam };
+
+struct PlannerConfig {
+  PlannerKind kind = PlannerKind::kRoute;
+  // The area-of-interest trigger and K-means. With kRoute the trigger still delimits the route
+  // sections (no detours), so route and SWSLAM runs report comparable sections; `detour` is set
+  // from `kind` by the runner.
+  SwslamPlannerParams swslam;
+};
+
+// What a scenario file (configs/*.yaml) holds: the simulation and the filter run on it.
+struct ScenarioConfig {
+  ScenarioParams scenario;
+  EkfSlamParams ekf;
+  PlannerConfig planner;
+};
+
+// Loads a scenario YAML file (configs/*.yaml; the keys are documented in docs/scenario.md).
+// Every key names its unit; angles in configs are in degrees (`_deg`) and converted here.
+// Throws InputError naming the file, the key (with its line) and the reason for an unknown key,
+// a wrong type, or an out-of-range value. A `landmarks_csv` path is read relative to the file.
+ScenarioConfig LoadScenario(const std::filesystem::path& path);
+
+}  // namespace slamkit

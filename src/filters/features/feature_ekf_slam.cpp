@@ -1,0 +1,301 @@
+#include "slamkit/filters/features/feature_ekf_slam.hpp"
+
+#include "slamkit/features/line_fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace slamkit {
+namespace {
+
+const BlockKind kCornerKind{2, {}, false, nullptr};
+// Of the pseudo-observation that fuses two line landmarks: (0.1 mm)², (0.1 mrad)².
+constexpr double kSameLineVariance = 1e-8;
+
+RangeBearingParams CornerSensorParams(const FeatureEkfSlamParams& params) {
+  RangeBearingParams p;
+  p.max_range_m = params.corner_reach_m;
+  return p;
+}
+
+void CheckFinite(const ScanFeatures& scan) {
+  for (const LineSegment& s : scan.lines) {
+    if (!std::isfinite(s.line.rho_m) || !std::isfinite(s.line.alpha_rad) ||
+        !s.covariance.allFinite() || !s.start_m.allFinite() || !s.end_m.allFinite()) {
+      throw std::invalid_argument("FeatureEkfSlam::Update: line with a non-finite value");
+    }
+  }
+  for (const Corner& c : scan.corners) {
+    if (!c.point_m.allFinite() || !c.covariance.allFinite()) {
+      throw std::invalid_argument("FeatureEkfSlam::Update: corner with a non-finite value");
+    }
+  }
+}
+
+// SPEC S1: a corner is a point landmark seen in range-bearing.
+std::vector<PointObservation> CornerObservations(const ScanFeatures& scan) {
+  std::vector<PointObservation> out;
+  out.reserve(scan.corners.size());
+  for (const Corner& c : scan.corners) {
+    PointObservation obs;
+    const RangeBearing rb = CornerRangeBearing(c, &obs.R);
+    obs.z << rb.range_m, rb.bearing_rad;
+    out.push_back(obs);
+  }
+  return out;
+}
+
+}  // namespace
+
+// The scan's corners against the corner landmarks: a candidate must pass the reach gate and be of
+// the sighting's kind (concave or convex), so the associator never pairs the two kinds.
+class FeatureEkfSlam::CornerContext final : public AssociationContext {
+ public:
+  CornerContext(const FeatureEkfSlam& slam, const ScanFeatures& scan,
+                const std::vector<PointObservation>& observations)
+      : slam_(slam), scan_(scan), observations_(observations) {}
+
+  int NumObservations() const override { return static_cast<int>(observations_.size()); }
+  const PointObservation& Observation(int i) const override { return observations_[i]; }
+  int NumLandmarks() const override { return slam_.NumCorners(); }
+  std::span<const AssociationCandidate> Candidates(int i) const override {
+    candidates_.clear();
+    for (int c = 0; c < slam_.NumCorners(); ++c) {
+      const int blocks[] = {kPoseBlock, slam_.corner_blocks_[c]};
+      if (slam_.corner_kinds_[c] != scan_.corners[i].kind) continue;
+      if (!slam_.corner_model_.Gate(slam_.ekf_, blocks)) continue;
+      candidates_.push_back({c, Distance(i, c)});
+    }
+    return candidates_;
+  }
+  int LandmarkWithSourceId(LandmarkId /*id*/) const override { return -1; }
+  double Distance(int i, int corner) const override {
+    return slam_.ekf_.MahalanobisSquared(Linearised(i, corner));
+  }
+  JointInnovation Joint(std::span<const Pairing> hypothesis) const override {
+    std::vector<Linearisation> parts;
+    JointInnovation joint;
+    joint.nu.resize(2 * static_cast<int>(hypothesis.size()));
+    for (const Pairing& p : hypothesis) parts.push_back(Linearised(p.observation, p.landmark));
+    for (std::size_t k = 0; k < parts.size(); ++k) joint.nu.segment<2>(2 * k) = parts[k].innovation;
+    joint.S = slam_.ekf_.JointInnovationCovariance(parts);
+    return joint;
+  }
+
+ private:
+  Linearisation Linearised(int i, int corner) const {
+    const int blocks[] = {kPoseBlock, slam_.corner_blocks_[corner]};
+    return Linearise(slam_.corner_model_, slam_.ekf_, blocks, observations_[i].z,
+                     observations_[i].R);
+  }
+
+  const FeatureEkfSlam& slam_;
+  const ScanFeatures& scan_;
+  const std::vector<PointObservation>& observations_;
+  mutable std::vector<AssociationCandidate> candidates_;
+};
+
+FeatureEkfSlam::FeatureEkfSlam(const FeatureEkfSlamParams& params,
+                               std::unique_ptr<MotionModel> motion,
+                               std::unique_ptr<SelectionPolicy> selection,
+                               std::unique_ptr<Associator> corner_associator)
+    : params_(params),
+      motion_(std::move(motion)),
+      selection_(selection ? std::move(selection) : std::make_unique<SelectAll>()),
+      corner_associator_(corner_associator
+                             ? std::move(corner_associator)
+                             : std::make_unique<NearestNeighbourAssociator>(params.corners)),
+      line_associator_(params.lines),
+      corner_sensor_(CornerSensorParams(params)),
+      ekf_(params.initial_capacity),
+      line_kind_(ekf_.RegisterKind(LineBlockKind())),
+      corner_kind_(ekf_.RegisterKind(kCornerKind)),
+      line_model_(line_kind_, params.min_line_rho_m),
+      corner_model_(corner_sensor_, corner_kind_, 0.0) {
+  Reset(Pose2());
+}
+
+void FeatureEkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
+  ekf_.Clear();
+  ekf_.AddBlock(kPoseKind, pose.vector(), pose_cov);
+  lines_.Clear();
+  corner_blocks_.clear();
+  corner_kinds_.clear();
+  selection_stats_ = {};
+  updates_ = 0;
+}
+
+// SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1).
+void FeatureEkfSlam::Predict(const Control& u, double dt_s,
+                             const ControlCovariance* control_noise) {
+  if (!u.allFinite() || !std::isfinite(dt_s) || (control_noise && !control_noise->allFinite())) {
+    throw std::invalid_argument("FeatureEkfSlam::Predict: non-finite control, time step or noise");
+  }
+  Eigen::Matrix3d J_x_x;
+  ControlJacobian J_x_u;
+  const Pose2 moved = motion_->Move(pose(), u, dt_s, &J_x_x, &J_x_u);
+  const ControlCovariance Q = control_noise ? *control_noise : motion_->Noise(u, dt_s);
+  ekf_.PredictPose(kPoseBlock, moved, J_x_x, J_x_u, Q);
+}
+
+Eigen::Matrix2d FeatureEkfSlam::LineCovariance(int line) const {
+  const int b = lines_.Block(line);
+  return ekf_.CovarianceBlock(b, b);
+}
+
+// SPEC S1: both kinds are associated against the prior, then offered to the selection policy
+// together, so it ranks lines and corners on the same footing; new features are added after.
+FeatureDecisions FeatureEkfSlam::Update(const ScanFeatures& robot_frame) {
+  CheckFinite(robot_frame);
+  selection_stats_ = {};
+  const std::vector<PointObservation> corners = CornerObservations(robot_frame);
+  FeatureDecisions d;
+  d.lines = line_associator_.Associate(ekf_, kPoseBlock, line_model_, lines_, robot_frame.lines);
+  d.corners = corner_associator_->Associate(CornerContext(*this, robot_frame, corners));
+  std::vector<MatchedObservation> matched = Matched(robot_frame, d, corners);
+  if (!matched.empty()) {
+    BlockSelectionSession session(ekf_, std::move(matched), params_.selection_diagnostics);
+    selection_->Select(session);
+    selection_stats_ = session.stats();
+  }
+  ekf_.ApplyPendingDowndate();  // also brings the lines back to ρ ≥ 0
+  ExtendMatchedLines(robot_frame, d);
+  FuseMetLines(d);
+  AugmentNew(robot_frame, corners, d);
+  ++updates_;
+  if (params_.health.every_update()) {
+    const bool psd = params_.health.PsdDue(updates_, ekf_.StateSize());
+    ekf_.CheckHealth(params_.health, psd,
+                     "FeatureEkfSlam after update " + std::to_string(updates_));
+  }
+  return d;
+}
+
+void FeatureEkfSlam::CheckOutputHealth() const {
+  if (params_.health.enabled()) ekf_.CheckHealth(params_.health, true, "FeatureEkfSlam at output");
+}
+
+std::vector<MatchedObservation> FeatureEkfSlam::Matched(
+    const ScanFeatures& scan, const FeatureDecisions& d,
+    const std::vector<PointObservation>& corners) const {
+  std::vector<MatchedObservation> matched;
+  for (std::size_t i = 0; i < scan.lines.size(); ++i) {
+    if (d.lines[i].kind != AssociationDecision::Kind::kMatched) continue;
+    matched.push_back({&line_model_,
+                       {kPoseBlock, lines_.Block(d.lines[i].landmark)},
+                       2,
+                       LineVector(scan.lines[i].line),
+                       scan.lines[i].covariance});
+  }
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    if (d.corners[i].kind != AssociationDecision::Kind::kMatched) continue;
+    matched.push_back({&corner_model_,
+                       {kPoseBlock, corner_blocks_[d.corners[i].landmark]},
+                       2,
+                       corners[i].z,
+                       corners[i].R});
+  }
+  return matched;
+}
+
+// A matched sighting is that wall: its segment, placed from the updated pose, grows the extent
+// (whether or not the selection applied it).
+void FeatureEkfSlam::ExtendMatchedLines(const ScanFeatures& scan, const FeatureDecisions& d) {
+  const Pose2 x = pose();
+  for (std::size_t i = 0; i < scan.lines.size(); ++i) {
+    if (d.lines[i].kind != AssociationDecision::Kind::kMatched) continue;
+    const int line = d.lines[i].landmark;
+    lines_.Extend(line, Line(line), x.TransformFrom(scan.lines[i].start_m),
+                  x.TransformFrom(scan.lines[i].end_m));
+  }
+}
+
+int FeatureEkfSlam::NumActiveLines() const {
+  int n = 0;
+  for (int i = 0; i < lines_.size(); ++i) n += lines_.Active(i);
+  return n;
+}
+
+// The pseudo-observation l_i − l_j = 0 of two line landmarks (H = [I, −I], a tiny R).
+Linearisation FeatureEkfSlam::SameLine(int i, int j) const {
+  const PolarLine a = Line(i), b = Line(j);
+  Linearisation c;
+  c.innovation = -LineInnovation(a, b);
+  c.H.Add(lines_.Block(i), BlockMatrix::Identity(2, 2));
+  c.H.Add(lines_.Block(j), -BlockMatrix::Identity(2, 2));
+  c.R = BlockMatrix::Identity(2, 2) * kSameLineVariance;
+  return c;
+}
+
+// Whether lines `a` and `b` (with their seen extents) are one wall by their own geometry: the
+// angle between them and each extent's distance from the other's line within the separation
+// under which association would not start a second landmark (new_min_separation_*). The χ² test
+// alone is not enough: two parallel walls a metre apart pass it while the filter is uncertain,
+// and the fusion's hard constraint would then drag the map and the pose onto one of them.
+bool FeatureEkfSlam::NearlySameLine(const PolarLine& a, const LineExtent& ea, const PolarLine& b,
+                                    const LineExtent& eb) const {
+  const double max_rho = params_.lines.new_min_separation_rho_m;
+  if (std::abs(WrapAngle(a.alpha_rad - b.alpha_rad)) > params_.lines.new_min_separation_alpha_rad) {
+    return false;
+  }
+  for (const Eigen::Vector2d& p : {eb.start_m, eb.end_m}) {
+    if (std::abs(DistanceToLine(a, p)) > max_rho) return false;
+  }
+  for (const Eigen::Vector2d& p : {ea.start_m, ea.end_m}) {
+    if (std::abs(DistanceToLine(b, p)) > max_rho) return false;
+  }
+  return true;
+}
+
+// Two landmarks started from glimpses of one wall that did not overlap (seen through two doors)
+// meet once its extent has grown: a landmark matched in this scan whose extent now overlaps
+// another's, with (ρ, α) compatible (l_i − l_j within the χ² gate of its covariance), is fused
+// with it by the pseudo-observation l_i − l_j = 0, and the later of the two is merged into the
+// earlier. (The merged block stays in the state, tied to the other: BlockEkf removes no block.)
+void FeatureEkfSlam::FuseMetLines(const FeatureDecisions& d) {
+  for (const AssociationDecision& m : d.lines) {
+    if (m.kind != AssociationDecision::Kind::kMatched || !lines_.Active(m.landmark)) continue;
+    int i = m.landmark;
+    for (int j = 0; j < lines_.size(); ++j) {
+      if (j == i || !lines_.Active(j)) continue;
+      const LineExtent &a = lines_.Extent(i), &b = lines_.Extent(j);
+      const PolarLine l = Line(i);
+      if (!NearlySameLine(l, a, Line(j), b) ||
+          SegmentOverlapM(a.start_m, a.end_m, b.start_m, b.end_m, l.alpha_rad) <= 0.0) {
+        continue;
+      }
+      const Linearisation c = SameLine(i, j);
+      if (ekf_.MahalanobisSquared(c) >= params_.lines.gate_chi2) continue;
+      ekf_.Update(c);
+      ekf_.ApplyPendingDowndate();
+      const int into = std::min(i, j);
+      lines_.Merge(std::max(i, j), into, Line(into));
+      i = into;
+    }
+  }
+}
+
+// SPEC S2, Eq. 8 (state augmentation) for every new line and corner.
+void FeatureEkfSlam::AugmentNew(const ScanFeatures& scan,
+                                const std::vector<PointObservation>& corners, FeatureDecisions& d) {
+  const int observers[] = {kPoseBlock};
+  for (std::size_t i = 0; i < scan.lines.size(); ++i) {
+    if (d.lines[i].kind != AssociationDecision::Kind::kNew) continue;
+    const LineSegment& s = scan.lines[i];
+    const int block = AugmentFrom(line_model_, ekf_, observers, LineVector(s.line), s.covariance);
+    const Pose2 x = pose();
+    d.lines[i].landmark = lines_.Add(block, LineOf(ekf_.Mean(block)), x.TransformFrom(s.start_m),
+                                     x.TransformFrom(s.end_m));
+  }
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    if (d.corners[i].kind != AssociationDecision::Kind::kNew) continue;
+    corner_blocks_.push_back(
+        AugmentFrom(corner_model_, ekf_, observers, corners[i].z, corners[i].R));
+    corner_kinds_.push_back(scan.corners[i].kind);
+    d.corners[i].landmark = NumCorners() - 1;
+  }
+}
+
+}  // namespace slamkit

@@ -1,0 +1,131 @@
+#include "slamkit/runners/grid/grid_run.hpp"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "slamkit/io/error.hpp"
+#include "slamkit/runners/landmark/outputs.hpp"
+
+namespace slamkit {
+namespace {
+
+std::optional<HeadingDriftFit> FitLogOdometry(const CarmenLog& log, const Trajectory& estimate) {
+  const HeadingDriftParams params;
+  if (log.scans.size() < static_cast<std::size_t>(params.window_steps) + 1) return std::nullopt;
+  std::vector<Pose2> steps;
+  steps.reserve(log.scans.size() - 1);
+  for (std::size_t i = 1; i < log.scans.size(); ++i) {
+    steps.push_back(log.scans[i - 1].odometry.Between(log.scans[i].odometry));
+  }
+  return FitHeadingDrift(steps, estimate, params);
+}
+
+}  // namespace
+
+GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
+                          const std::function<void(int, int)>& progress) {
+  if (log.scans.empty()) {
+    throw InputError("grid: the log has no laser scan (no FLASER/ROBOTLASER1/RAWLASER line)");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  GridRunResult out;
+  try {
+    OccupancyGrid check(params.grid);  // a bad resolution or limit fails before the run
+    RbpfGridSlam slam(params);
+    const int total = static_cast<int>(log.scans.size());
+    for (int i = 0; i < total; ++i) {
+      slam.ProcessScan(log.scans[i]);
+      if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
+    }
+    slam.CheckOutputHealth();  // NumericalError: not an input error, so not caught below
+    out.trajectory = slam.BestTrajectory();
+    out.map = slam.BestMap();
+    out.updates = slam.updates();
+    out.resamples = slam.resamples();
+    out.heading_drift_in_use_rad_per_m = slam.heading_drift_rad_per_m();
+  } catch (const std::invalid_argument& e) {  // the grid's parameters or the log's values
+    throw InputError(std::string("grid: ") + e.what());
+  } catch (const std::out_of_range& e) {  // a pose, odometry or laser offset outside the map
+    throw InputError(std::string("grid: ") + e.what());
+  } catch (const std::length_error& e) {  // a map larger than OccupancyGridParams allows
+    throw InputError(std::string("grid: ") + e.what());
+  }
+  const int total = static_cast<int>(log.scans.size());
+  out.scans = total;
+  out.odometry_heading_drift = FitLogOdometry(log, out.trajectory);
+  out.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceComparison* reference,
+                     nlohmann::json& j) {
+  if (relations) {
+    j["relations"] = relations->count;
+    j["relations_trans_mean_m"] = relations->trans_mean_m;
+    j["relations_trans_std_m"] = relations->trans_std_m;
+    j["relations_rot_mean_deg"] = relations->rot_mean_deg;
+    j["relations_rot_std_deg"] = relations->rot_std_deg;
+  }
+  if (reference) {
+    j["ate_rmse_m"] = reference->ate.rmse_m;
+    j["ate_mean_m"] = reference->ate.mean_m;
+    j["ate_max_m"] = reference->ate.max_m;
+    j["rpe_trans_mean_m"] = reference->rpe.trans_mean_m;
+    j["rpe_trans_std_m"] = reference->rpe.trans_std_m;
+    j["rpe_rot_mean_deg"] = reference->rpe.rot_mean_deg;
+    j["rpe_rot_std_deg"] = reference->rpe.rot_std_deg;
+  }
+}
+
+nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& params,
+                           const RelationErrorStats* relations,
+                           const ReferenceComparison* reference, double peak_rss_mib) {
+  nlohmann::json j = {{"scans", r.scans},
+                      {"updates", r.updates},
+                      {"resamples", r.resamples},
+                      {"particles", params.particles},
+                      {"seed", params.seed},
+                      {"linear_update_m", params.linear_update_m},
+                      {"angular_update_rad", params.angular_update_rad},
+                      {"track_between_updates", params.tracking_mode != TrackingMode::kOff},
+                      {"motion_from_tracking",
+                       params.tracking_mode == TrackingMode::kTrackedMotion},
+                      {"gaussian_proposal", params.proposal == ProposalScheme::kGaussian},
+                      {"usable_range_m", params.usable_range_m},
+                      {"wall_time_s", r.wall_time_s},
+                      {"scans_per_s", r.wall_time_s > 0 ? r.scans / r.wall_time_s : 0.0},
+                      {"peak_rss_mib", peak_rss_mib}};
+  AddErrorMetrics(relations, reference, j);
+  if (r.odometry_heading_drift) {
+    j["odometry_heading_drift"] = HeadingDriftJson(*r.odometry_heading_drift, {});
+  }
+  j["heading_drift_in_use_rad_per_m"] = r.heading_drift_in_use_rad_per_m;
+  return j;
+}
+
+Trajectory LoggedTrajectory(const CarmenLog& log) {
+  Trajectory out;
+  out.reserve(log.scans.size());
+  for (const LaserScan& scan : log.scans) out.push_back({scan.t_s, scan.logged_pose});
+  return out;
+}
+
+Trajectory OdometryTrajectory(const CarmenLog& log) {
+  Trajectory out;
+  out.reserve(log.scans.size());
+  for (const LaserScan& scan : log.scans) out.push_back({scan.t_s, scan.odometry});
+  return out;
+}
+
+double PeakRssMib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
+}
+
+}  // namespace slamkit

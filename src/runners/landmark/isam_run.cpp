@@ -1,0 +1,271 @@
+#include "slamkit/runners/landmark/isam_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <set>
+#include <stdexcept>
+
+#include "isam_steps.hpp"
+#include "slamkit/eval/alignment.hpp"
+#include "slamkit/models/odometry.hpp"
+#include "slamkit/models/range_bearing.hpp"
+#include "slamkit/models/relative_point.hpp"
+
+namespace slamkit {
+namespace {
+
+// One-to-one matching of our landmarks to the file's ids, greedily by the number of sightings
+// they share (largest first); the agreement is the share of all sightings that fall on matched
+// pairs. A file landmark split into two of ours, or two merged into one, loses the smaller part.
+struct Agreement {
+  double share = 0.0;
+  std::map<int, LandmarkId> pairs;  // our landmark index → the file's id it was matched to
+};
+
+Agreement AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
+                               int sightings) {
+  std::map<std::pair<int, LandmarkId>, int> shared;
+  for (const auto& pair : assigned) {
+    if (pair.first >= 0) ++shared[pair];
+  }
+  std::vector<std::pair<int, std::pair<int, LandmarkId>>> by_count;
+  for (const auto& [pair, count] : shared) by_count.push_back({count, pair});
+  std::stable_sort(by_count.begin(), by_count.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  Agreement out;
+  std::set<LandmarkId> theirs_taken;
+  int agree = 0;
+  for (const auto& [count, pair] : by_count) {
+    if (out.pairs.count(pair.first) || theirs_taken.count(pair.second)) continue;
+    out.pairs[pair.first] = pair.second;
+    theirs_taken.insert(pair.second);
+    agree += count;
+  }
+  out.share = sightings > 0 ? double(agree) / double(sightings) : 1.0;
+  return out;
+}
+
+// The covariance of a Cartesian sighting `z` (x forward, y left) whose range and bearing have
+// independent errors of σ_r and σ_b: J diag(σ_r², σ_b²) Jᵀ, J = ∂(x, y)/∂(r, b) from the
+// range-bearing model's inverse seen from the origin.
+Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_range_m,
+                                       double sigma_bearing_rad) {
+  Eigen::Matrix2d J_xy_rb;
+  InvertRangeBearing(Pose2(), {z.norm(), std::atan2(z.y(), z.x())}, nullptr, &J_xy_rb);
+  const Eigen::Vector2d variances(sigma_range_m * sigma_range_m,
+                                  sigma_bearing_rad * sigma_bearing_rad);
+  return J_xy_rb * variances.asDiagonal() * J_xy_rb.transpose();
+}
+
+std::optional<HeadingDriftFit> FitFileOdometry(const IsamLog& log, const Trajectory& estimate,
+                                               const HeadingDriftParams& params) {
+  if (log.steps.size() < static_cast<std::size_t>(std::max(params.window_steps, 1))) {
+    return std::nullopt;
+  }
+  std::vector<Pose2> odometry;
+  odometry.reserve(log.steps.size());
+  for (const IsamStep& step : log.steps) {
+    odometry.emplace_back(step.odometry.x(), step.odometry.y(), step.odometry.z());
+  }
+  return FitHeadingDrift(odometry, estimate, params);
+}
+
+// One filter run over the log, with each decision paired with the file's id of its sighting.
+struct Pass {
+  std::vector<std::pair<int, LandmarkId>> assigned;
+  Trajectory estimate;
+  int sightings = 0;
+  int dropped = 0;
+};
+
+Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& params,
+             bool known_association) {
+  Pass pass;
+  slam.Reset(Pose2(), Eigen::Matrix3d::Zero());
+  auto update = [&](const std::vector<PointObservation>& sightings) {
+    std::vector<PointObservation> input = sightings;
+    for (PointObservation& s : input) {
+      s.R = isam_detail::SightingCovariance(s, params);
+      if (!known_association) s.id = kNoLandmark;  // ids only score the result
+    }
+    const auto decisions = slam.Update(input);
+    for (std::size_t i = 0; i < decisions.size(); ++i) {
+      pass.dropped += decisions[i].kind == AssociationDecision::Kind::kDropped ? 1 : 0;
+      pass.assigned.emplace_back(decisions[i].landmark, sightings[i].id);
+    }
+    pass.sightings += static_cast<int>(sightings.size());
+  };
+  update(log.initial_sightings);
+  pass.estimate.push_back({double(log.initial_pose_index), slam.PoseEstimate()});
+  for (const IsamStep& step : log.steps) {
+    const ControlCovariance q = isam_detail::StepCovariance(step, params);
+    slam.Predict(isam_detail::StepControl(step, params), 0.0, &q);
+    update(step.sightings);
+    pass.estimate.push_back({double(step.pose_index), slam.PoseEstimate()});
+  }
+  // Before anything is taken from the state: a run gone numerically bad gives no map of NaN.
+  slam.CheckOutputHealth();
+  return pass;
+}
+
+IsamReferenceErrors CompareWithReference(const IsamRunResult& run,
+                                         const std::map<int, LandmarkId>& pairs,
+                                         const IsamSmoothedReference& reference) {
+  IsamReferenceErrors out;
+  out.ate = AbsoluteTrajectoryError(run.estimate, reference.path);
+  std::vector<Eigen::Vector2d> ours, theirs;
+  for (const auto& [index, id] : pairs) {
+    const auto it = reference.landmarks.find(id);
+    if (index >= static_cast<int>(run.map.landmarks.size()) || it == reference.landmarks.end()) {
+      continue;
+    }
+    ours.push_back(run.map.landmarks[index].position_m);
+    theirs.push_back(it->second);
+  }
+  out.landmarks_compared = static_cast<int>(ours.size());
+  if (ours.size() >= 2) out.map_rmse_m = AlignPoints(ours, theirs).rmse_m;
+  return out;
+}
+
+// The pairs of file ids sighted from one pose: two distinct landmarks by the file's own account.
+std::set<std::pair<LandmarkId, LandmarkId>> SightedTogether(const IsamLog& log) {
+  std::set<std::pair<LandmarkId, LandmarkId>> together;
+  auto add = [&](const std::vector<PointObservation>& sightings) {
+    for (const PointObservation& a : sightings) {
+      for (const PointObservation& b : sightings) {
+        if (a.id < b.id) together.insert({a.id, b.id});
+      }
+    }
+  };
+  add(log.initial_sightings);
+  for (const IsamStep& step : log.steps) add(step.sightings);
+  return together;
+}
+
+// Representative of `id` in a union-find forest over file ids.
+LandmarkId Root(std::map<LandmarkId, LandmarkId>& parent, LandmarkId id) {
+  while (parent.count(id) && parent[id] != id) id = parent[id] = parent[parent[id]];
+  return id;
+}
+
+}  // namespace
+
+namespace isam_detail {
+
+Eigen::Matrix3d StepCovariance(const IsamStep& step, const IsamRunParams& params) {
+  const Pose2 delta(step.odometry.x(), step.odometry.y(), step.odometry.z());
+  const Eigen::Vector3d sigmas = OdometryNoiseSigmas(delta, params.odometry_noise);
+  return step.odometry_covariance * params.odometry_covariance_scale +
+         Eigen::Matrix3d(sigmas.cwiseProduct(sigmas).asDiagonal());
+}
+
+Control StepControl(const IsamStep& step, const IsamRunParams& params) {
+  Eigen::Vector3d u = step.odometry;
+  if (params.odometry_heading_drift_rad_per_m != 0.0) {
+    u.z() += params.odometry_heading_drift_rad_per_m * std::hypot(u.x(), u.y());
+  }
+  return Control(u);
+}
+
+Eigen::Matrix2d SightingCovariance(const PointObservation& sighting, const IsamRunParams& params) {
+  Eigen::Matrix2d R = sighting.R;
+  if (params.sighting_sigma_range_m > 0.0 && params.sighting_sigma_bearing_rad > 0.0) {
+    R = RangeBearingCovariance(sighting.z, params.sighting_sigma_range_m,
+                               params.sighting_sigma_bearing_rad);
+  }
+  return R * params.sighting_covariance_scale;
+}
+
+}  // namespace isam_detail
+
+std::vector<std::vector<LandmarkId>> IndistinguishableReferenceIds(const IsamLog& log,
+                                                                   const IsamRunParams& params) {
+  EkfSlamParams known = params.ekf;
+  known.association_method = AssociationMethod::kKnown;
+  EkfSlam slam(known, std::make_unique<OdometryModel>(), std::make_unique<RelativePointModel>());
+  RunPass(slam, log, params, true);
+  const auto together = SightedTogether(log);
+  std::map<LandmarkId, LandmarkId> parent;
+  const int n = slam.NumLandmarks();
+  for (int a = 0; a < n; ++a) {
+    for (int b = a + 1; b < n; ++b) {
+      const Eigen::Vector2d d = slam.LandmarkPosition(a) - slam.LandmarkPosition(b);
+      const Eigen::Matrix2d P_ab = slam.LandmarkCovariance(a, b);
+      const Eigen::Matrix2d S =
+          slam.LandmarkCovariance(a) + slam.LandmarkCovariance(b) - P_ab - P_ab.transpose();
+      if (d.dot(S.ldlt().solve(d)) > params.ekf.association.gate_chi2) continue;
+      const LandmarkId ia = slam.LandmarkSourceId(a), ib = slam.LandmarkSourceId(b);
+      if (together.count({std::min(ia, ib), std::max(ia, ib)})) continue;
+      parent.try_emplace(ia, ia);
+      parent.try_emplace(ib, ib);
+      parent[Root(parent, std::max(ia, ib))] = Root(parent, std::min(ia, ib));
+    }
+  }
+  std::map<LandmarkId, std::vector<LandmarkId>> groups;
+  for (const auto& [id, unused] : parent) groups[Root(parent, id)].push_back(id);
+  std::vector<std::vector<LandmarkId>> out;
+  for (auto& [root, ids] : groups) out.push_back(std::move(ids));
+  return out;
+}
+
+IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) {
+  EkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
+               std::make_unique<RelativePointModel>());
+  return RunFilterOnIsam(slam, log, params, params.ekf.known_association());
+}
+
+IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
+                                FastSlamParams fastslam) {
+  const AssociationParams& ekf = params.ekf.association;
+  fastslam.known_association = params.ekf.known_association();
+  fastslam.new_landmark_test = params.fastslam.new_landmark_test;
+  fastslam.gate_chi2 = params.fastslam.gate_chi2.value_or(ekf.gate_chi2);
+  fastslam.new_landmark_chi2 = params.fastslam.new_landmark_chi2.value_or(ekf.new_landmark_chi2);
+  // Delayed sampling serves each particle's own association; with the file's ids it is not used.
+  fastslam.delayed_sampling = params.fastslam.delayed_sampling && !fastslam.known_association;
+  fastslam.window_max_landmarks = params.fastslam.window_max_landmarks;
+  FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
+                  std::make_unique<RelativePointModel>());
+  return RunFilterOnIsam(filter, log, params, fastslam.known_association);
+}
+
+IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
+                              const IsamRunParams& params, bool known_association) {
+  const auto start = std::chrono::steady_clock::now();
+  Pass pass = RunPass(filter, log, params, known_association);
+  IsamRunResult out;
+  out.estimate = std::move(pass.estimate);
+  out.map = filter.Map();
+  out.sightings = pass.sightings;
+  out.dropped = pass.dropped;
+  out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.odometry_heading_drift = FitFileOdometry(log, out.estimate, params.heading_drift_fit);
+  const Agreement agreement = AssociationAgreement(pass.assigned, out.sightings);
+  out.association_agreement = agreement.share;
+  if (params.compare_with_smoothed_reference) {
+    try {
+      out.smoothed_reference =
+          CompareWithReference(out, agreement.pairs, SmoothIsamLog(log, params));
+    } catch (const std::invalid_argument& e) {
+      out.smoothed_reference_failure = e.what();
+    }
+  }
+  if (params.score_against_merged_reference) {
+    out.reference_merges = IndistinguishableReferenceIds(log, params);
+    std::map<LandmarkId, LandmarkId> merged;
+    for (const auto& group : out.reference_merges) {
+      for (LandmarkId id : group) merged[id] = group.front();
+    }
+    for (auto& [ours, theirs] : pass.assigned) {
+      if (merged.count(theirs)) theirs = merged[theirs];
+    }
+    out.association_agreement_merged = AssociationAgreement(pass.assigned, out.sightings).share;
+  }
+  return out;
+}
+
+}  // namespace slamkit
