@@ -32,21 +32,21 @@ struct GridOptions {
   bool frame_odometry = false;   // keep the log's odometry frame instead of starting at the origin
   bool seed_given = false;       // --seed and --particles override --config
   bool particles_given = false;
-  RbpfGridSlamParams params;
+  GridSlamConfig slam;  // the filter options' values
 };
 
 // The filter's parameters (the options, or --config with --seed and --particles over it), and
 // the frame: the log's odometry frame with --frame odometry, else `odometry` is moved to start at
 // the origin, where the filter starts.
-RbpfGridSlamParams EffectiveParams(const GridOptions& o, Trajectory* odometry) {
-  RbpfGridSlamParams params = o.params;
+GridSlamConfig EffectiveParams(const GridOptions& o, Trajectory* odometry) {
+  GridSlamConfig params = o.slam;
   if (!o.config.empty()) {
     params = LoadGridConfig(o.config);
-    if (o.seed_given) params.seed = o.params.seed;
-    if (o.particles_given) params.particles = o.params.particles;
+    if (o.seed_given) params.rbpf.seed = o.slam.rbpf.seed;
+    if (o.particles_given) params.rbpf.particles = o.slam.rbpf.particles;
   }
   if (o.frame_odometry) {
-    params.initial_pose = odometry->front().pose;
+    params.rbpf.initial_pose = odometry->front().pose;
   } else {
     const Pose2 to_origin = odometry->front().pose.Inverse();
     for (StampedPose& p : *odometry) p.pose = to_origin.Compose(p.pose);
@@ -55,7 +55,7 @@ RbpfGridSlamParams EffectiveParams(const GridOptions& o, Trajectory* odometry) {
 }
 
 nlohmann::json RunMetrics(const GridOptions& o, const CarmenLog& log, const GridRunResult& result,
-                          const RbpfGridSlamParams& params, const LogEvaluation& eval) {
+                          const GridSlamConfig& params, const LogEvaluation& eval) {
   nlohmann::json metrics =
       GridMetrics(result, params, eval.relations ? &*eval.relations : nullptr,
                   eval.reference ? &*eval.reference : nullptr, PeakRssMib());
@@ -75,7 +75,7 @@ int RunGridCommand(const GridOptions& o) {
   std::vector<PoseRelation> relations = ReadInputRelations(o.input);  // fail before the long run
   const std::optional<Trajectory> reference = LoadReference(o.input, log);
   Trajectory odometry = OdometryTrajectory(log);
-  const RbpfGridSlamParams params = EffectiveParams(o, &odometry);
+  const GridSlamConfig params = EffectiveParams(o, &odometry);
   OutputDir output(o.out);
 
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
@@ -93,7 +93,7 @@ int RunGridCommand(const GridOptions& o) {
                 o.input.log, TimestampProblem(result.trajectory), moved);
   }
   WriteJson(dir / "metrics.json", RunMetrics(o, log, result, params, eval));
-  PrintGridRun(o.input.log, result, params.particles);
+  PrintGridRun(o.input.log, result, params.rbpf.particles);
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
   return ReportEvaluation(o.input, eval, o.out);
@@ -106,7 +106,7 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("grid", "occupancy-grid RBPF SLAM on a CARMEN laser log");
   AddLogInputOptions(cmd, o->input);
   cmd->add_option("--out", o->out, "output directory")->required();
-  const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->params);
+  const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->slam.rbpf);
   CLI::Option* config =
       cmd->add_option("--config", o->config,
                       "the filter's parameters from a YAML file (configs/grid.yaml); instead of "
@@ -117,9 +117,9 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
       config->excludes(option);
     }
   }
-  cmd->add_option("--max-map-extent", o->params.grid.max_extent_m,
+  cmd->add_option("--max-map-extent", o->slam.rbpf.grid.max_extent_m,
                   "largest |x| or |y| the map may reach [m]")->check(CLI::PositiveNumber);
-  cmd->add_option("--max-map-cells", o->params.grid.max_cells,
+  cmd->add_option("--max-map-cells", o->slam.rbpf.grid.max_cells,
                   "largest map area in cells (1 byte each)")->check(CLI::PositiveNumber);
   cmd->add_option("--frame", o->frame_odometry,
                   "origin: the first scan at (0, 0, 0); odometry: the log's odometry frame")

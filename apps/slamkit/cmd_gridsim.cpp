@@ -37,7 +37,7 @@ struct GridSimOptions {
   std::uint64_t sim_seed = 1;
   int max_steps = 0;
   GridSimParams sim;
-  RbpfGridSlamParams params;
+  GridSlamConfig slam;
 };
 
 // A plan file is a map_server map when its name says YAML, else a walls file: a plan that is
@@ -67,7 +67,7 @@ std::pair<FloorPlan, RouteParams> PlanAndRoute(const GridSimOptions& o) {
 }
 
 void PrintSummary(const GridSimOptions& o, const GridSimResult& r) {
-  PrintGridRun(o.plan, r.slam, o.params.particles);
+  PrintGridRun(o.plan, r.slam, o.slam.rbpf.particles);
   PrintComparison("truth", r.vs_truth);
   fmt::print("  {:<28}{:>12}\n", "odometry ATE vs truth [m]",
              fmt::format("{:.4f} rms, {:.4f} max", r.odometry_vs_truth.ate.rmse_m,
@@ -84,7 +84,7 @@ int RunGridSimCommand(GridSimOptions o) {
 
   std::unique_ptr<Progress> progress;  // made once the simulation has told the scan count
   const GridSimResult result = RunGridSimulation(
-      plan, o.sim, RouteStartPose(o.sim.route), o.sim_seed, o.params,
+      plan, o.sim, RouteStartPose(o.sim.route), o.sim_seed, o.slam,
       [&progress](int done, int total) {
         if (!progress) progress = std::make_unique<Progress>("scans", total);
         progress->Update(done);
@@ -99,7 +99,7 @@ int RunGridSimCommand(GridSimOptions o) {
   WriteGridOutputs(dir, result.slam);
   WriteTumTrajectory(dir / "truth.tum", result.truth);
   WriteJson(dir / "metrics.json",
-            GridSimMetrics(result, o.sim, o.sim_seed, o.params, PeakRssMib()));
+            GridSimMetrics(result, o.sim, o.sim_seed, o.slam, PeakRssMib()));
   output.Commit();
   PrintSummary(o, result);
   fmt::print("wrote {}\n", o.out);
@@ -142,7 +142,7 @@ void RegisterGridSim(CLI::App& app, int& exit_code) {
       "occupancy-grid RBPF SLAM on a simulated laser run (SPEC S4 maze, a map or a walls file)");
   cmd->add_option("--out", o->out, "output directory")->required();
   AddSimulationOptions(cmd, *o);
-  AddGridFilterOptions(cmd, o->params);
+  AddGridFilterOptions(cmd, o->slam.rbpf);
   cmd->callback([o, &exit_code] {
     exit_code = RunGridSimCommand(*o);
   });

@@ -129,18 +129,21 @@ void ReadGrid(const Section& s, OccupancyGridParams* g) {
 
 }  // namespace
 
-RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
-                                  const RbpfGridSlamParams& defaults) {
+GridSlamConfig LoadGridConfig(const std::filesystem::path& path,
+                              const GridSlamConfig& defaults) {
   const YAML::Node yaml = config::LoadYamlFile(path);
   const Section s(yaml, path.string(), "",
-                  {"particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
+                  {"backend", "particles", "seed", "linear_update_m", "angular_update_rad", "resampling",
                    "likelihood_gain", "motion", "usable_range_m", "misses_spare_scan_hits",
                    "no_return_ray_length_m", "matcher",
                    "widen_below_typical_score", "proposal", "sampled_start_fraction",
                    "heading_sweep_sigmas", "gaussian", "tracking_mode", "tracking",
                    "tracking_max_correction_m", "tracking_max_correction_rad",
                    "tracking_max_step_m", "tracking_max_step_rad", "grid"});
-  RbpfGridSlamParams p = defaults;
+  GridSlamConfig config = defaults;
+  config.backend = static_cast<GridBackend>(config::ReadChoice(
+      s, "backend", GridBackendNames(), static_cast<int>(defaults.backend)));
+  RbpfGridSlamParams& p = config.rbpf;
   s.Read("particles", &p.particles, 1);
   s.Read("seed", &p.seed);
   s.Read("linear_update_m", &p.linear_update_m, Bound::kNonNegative);
@@ -181,12 +184,14 @@ RbpfGridSlamParams LoadGridConfig(const std::filesystem::path& path,
   ReadGrid(s.Child("grid", {"resolution_m", "log_odds_hit", "log_odds_miss", "log_odds_min",
                             "log_odds_max", "max_extent_m", "max_cells"}),
            &p.grid);
-  return p;
+  return config;
 }
 
-nlohmann::json GridParamsJson(const RbpfGridSlamParams& p) {
+nlohmann::json GridParamsJson(const GridSlamConfig& config) {
+  const RbpfGridSlamParams& p = config.rbpf;
   const OccupancyGridParams& g = p.grid;
-  return {{"particles", p.particles},
+  return {{"backend", GridBackendNames()[static_cast<int>(config.backend)]},
+          {"particles", p.particles},
           {"seed", p.seed},
           {"linear_update_m", p.linear_update_m},
           {"angular_update_rad", p.angular_update_rad},

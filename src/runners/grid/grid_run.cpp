@@ -24,39 +24,62 @@ std::optional<HeadingDriftFit> FitLogOdometry(const CarmenLog& log, const Trajec
   return FitHeadingDrift(steps, estimate, params);
 }
 
-}  // namespace
-
-GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
-                          const std::function<void(int, int)>& progress) {
-  if (log.scans.empty()) {
-    throw InputError("grid: the log has no laser scan (no FLASER/ROBOTLASER1/RAWLASER line)");
-  }
-  const auto start = std::chrono::steady_clock::now();
-  GridRunResult out;
+// The exceptions a filter throws for values it cannot take (its params', the log's), as the
+// InputError a command reports with exit code 2. NumericalError is not one of them.
+template <typename Body>
+void AsInputErrors(Body body) {
   try {
-    OccupancyGrid check(params.grid);  // a bad resolution or limit fails before the run
-    RbpfGridSlam slam(params);
-    const int total = static_cast<int>(log.scans.size());
-    for (int i = 0; i < total; ++i) {
-      slam.ProcessScan(log.scans[i]);
-      if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
-    }
-    slam.CheckOutputHealth();  // NumericalError: not an input error, so not caught below
-    out.trajectory = slam.BestTrajectory();
-    out.map = slam.BestMap();
-    out.updates = slam.updates();
-    out.resamples = slam.resamples();
-    out.heading_drift_in_use_rad_per_m = slam.heading_drift_rad_per_m();
-  } catch (const std::invalid_argument& e) {  // the grid's parameters or the log's values
+    body();
+  } catch (const std::invalid_argument& e) {  // the filter's parameters or the log's values
     throw InputError(std::string("grid: ") + e.what());
   } catch (const std::out_of_range& e) {  // a pose, odometry or laser offset outside the map
     throw InputError(std::string("grid: ") + e.what());
   } catch (const std::length_error& e) {  // a map larger than OccupancyGridParams allows
     throw InputError(std::string("grid: ") + e.what());
   }
+}
+
+void CheckHasScans(const CarmenLog& log) {
+  if (log.scans.empty()) {
+    throw InputError("grid: the log has no laser scan (no FLASER/ROBOTLASER1/RAWLASER line)");
+  }
+}
+
+}  // namespace
+
+GridRunResult RunGridSlam(const CarmenLog& log, GridSlam& slam,
+                          const std::function<void(int, int)>& progress) {
+  CheckHasScans(log);
+  const auto start = std::chrono::steady_clock::now();
+  GridRunResult out;
   const int total = static_cast<int>(log.scans.size());
+  AsInputErrors([&] {
+    for (int i = 0; i < total; ++i) {
+      slam.ProcessScan(log.scans[i]);
+      if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
+    }
+    slam.CheckOutputHealth();
+    out.trajectory = slam.BestTrajectory();
+    out.map = slam.BestMap();
+    const GridSlamStats stats = slam.Stats();
+    out.updates = stats.updates;
+    out.resamples = stats.resamples;
+    out.heading_drift_in_use_rad_per_m = stats.heading_drift_in_use_rad_per_m;
+  });
   out.scans = total;
   out.odometry_heading_drift = FitLogOdometry(log, out.trajectory);
+  out.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+GridRunResult RunGridSlam(const CarmenLog& log, const GridSlamConfig& config,
+                          const std::function<void(int, int)>& progress) {
+  CheckHasScans(log);  // before the filter's params, as the command always reported it
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<GridSlam> slam;
+  AsInputErrors([&] { slam = MakeGridSlam(config); });
+  GridRunResult out = RunGridSlam(log, *slam, progress);
   out.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
@@ -82,9 +105,10 @@ void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceCompari
   }
 }
 
-nlohmann::json GridMetrics(const GridRunResult& r, const RbpfGridSlamParams& params,
+nlohmann::json GridMetrics(const GridRunResult& r, const GridSlamConfig& config,
                            const RelationErrorStats* relations,
                            const ReferenceComparison* reference, double peak_rss_mib) {
+  const RbpfGridSlamParams& params = config.rbpf;
   nlohmann::json j = {{"scans", r.scans},
                       {"updates", r.updates},
                       {"resamples", r.resamples},

@@ -18,7 +18,7 @@ CarmenLog LogOfSimulatedRun(GridSimRun run) {
 
 GridSimResult RunGridSimulation(const FloorPlan& plan, const GridSimParams& sim,
                                 const Pose2& start, std::uint64_t sim_seed,
-                                const RbpfGridSlamParams& slam,
+                                const GridSlamConfig& slam,
                                 const std::function<void(int, int)>& progress) {
   const auto sim_start = std::chrono::steady_clock::now();
   Rng rng(sim_seed);
@@ -39,7 +39,7 @@ GridSimResult RunGridSimulation(const FloorPlan& plan, const GridSimParams& sim,
 }
 
 nlohmann::json GridSimMetrics(const GridSimResult& result, const GridSimParams& sim,
-                              std::uint64_t sim_seed, const RbpfGridSlamParams& slam,
+                              std::uint64_t sim_seed, const GridSlamConfig& slam,
                               double peak_rss_mib) {
   nlohmann::json j = GridMetrics(result.slam, slam, nullptr, &result.vs_truth, peak_rss_mib);
   j["sim_seed"] = sim_seed;

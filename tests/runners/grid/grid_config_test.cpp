@@ -14,9 +14,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // configs/grid.yaml documents the defaults: loading it onto other values must give exactly
-// RbpfGridSlamParams{}.
+// GridSlamConfig{}.
 TEST(GridConfig, TheShippedFileHoldsEveryDefault) {
-  RbpfGridSlamParams other;
+  GridSlamConfig config;
+  RbpfGridSlamParams& other = config.rbpf;
   other.particles = 7;
   other.motion.srt = 0.9;
   other.odometry_heading_drift_rad_per_m = 0.01;
@@ -25,16 +26,17 @@ TEST(GridConfig, TheShippedFileHoldsEveryDefault) {
   other.tracking.refinements = 11;
   other.grid.log_odds_hit = 2.0f;
   other.proposal = ProposalScheme::kScanMatch;
-  const RbpfGridSlamParams loaded =
-      LoadGridConfig(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / "grid.yaml", other);
-  EXPECT_EQ(GridParamsJson(loaded), GridParamsJson(RbpfGridSlamParams{}));
+  const GridSlamConfig loaded =
+      LoadGridConfig(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / "grid.yaml", config);
+  EXPECT_EQ(GridParamsJson(loaded), GridParamsJson(GridSlamConfig{}));
 }
 
 class GridConfigFile : public testing::TempDirTest {};
 
 // The effective parameters in metrics.json, written back as YAML (JSON is YAML), reproduce them.
 TEST_F(GridConfigFile, TheParametersJsonLoadsBackToTheSameParameters) {
-  RbpfGridSlamParams p;
+  GridSlamConfig config;
+  RbpfGridSlamParams& p = config.rbpf;
   p.particles = 12;
   p.resampling.scheme = ResamplingScheme::kMultinomial;
   p.tracking_mode = TrackingMode::kTrackOnly;
@@ -44,13 +46,14 @@ TEST_F(GridConfigFile, TheParametersJsonLoadsBackToTheSameParameters) {
   p.odometry_heading_drift_rad_per_m = -0.0034;
   p.estimate_heading_drift = true;
   p.heading_drift_prior_m2 = 20.0;
-  const fs::path path = WriteFile("params.yaml", GridParamsJson(p).dump(2));
-  EXPECT_EQ(GridParamsJson(LoadGridConfig(path)), GridParamsJson(p));
+  const fs::path path = WriteFile("params.yaml", GridParamsJson(config).dump(2));
+  EXPECT_EQ(GridParamsJson(LoadGridConfig(path)), GridParamsJson(config));
+  EXPECT_EQ(GridParamsJson(config)["backend"], "rbpf");
 }
 
 TEST_F(GridConfigFile, KeysLeftOutKeepTheDefaults) {
   const RbpfGridSlamParams p =
-      LoadGridConfig(WriteFile("g.yaml", "particles: 5\nmotion: {srr: 0.2}\n"));
+      LoadGridConfig(WriteFile("g.yaml", "particles: 5\nmotion: {srr: 0.2}\n")).rbpf;
   EXPECT_EQ(p.particles, 5);
   EXPECT_EQ(p.motion.srr, 0.2);
   EXPECT_EQ(p.motion.stt, RbpfGridSlamParams{}.motion.stt);
@@ -75,7 +78,8 @@ TEST_F(GridConfigFile, MistakesNameTheFileLineAndKey) {
       {"matcher: {beam_stride: fast}\n", "key 'matcher.beam_stride'"},
       {"usable_range: 30\n", "usable_range"},
       {"sampled_start_fraction: 1.5\n", "key 'sampled_start_fraction': must be at most 1"},
-      {"heading_sweep_sigmas: -1\n", "key 'heading_sweep_sigmas': must be >= 0"}};
+      {"heading_sweep_sigmas: -1\n", "key 'heading_sweep_sigmas': must be >= 0"},
+      {"backend: graph\n", "g.yaml:1: key 'backend': expected one of rbpf, got 'graph'"}};
   for (const Case& c : cases) {
     const std::string message =
         testing::InputErrorOf([&] { LoadGridConfig(WriteFile("g.yaml", c.yaml)); });

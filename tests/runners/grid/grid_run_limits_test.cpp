@@ -10,10 +10,10 @@
 namespace slamkit {
 namespace {
 
-RbpfGridSlamParams SmallParams() {
-  RbpfGridSlamParams p;
-  p.particles = 3;
-  return p;
+GridSlamConfig SmallParams() {
+  GridSlamConfig config;
+  config.rbpf.particles = 3;
+  return config;
 }
 
 CarmenLog TwoScanLog(const Pose2& second_odometry, const Pose2& laser_offset = Pose2()) {
@@ -37,13 +37,13 @@ TEST(GridRunLimits, HugePosesAndOffsetsAreInputErrors) {
 TEST(GridRunLimits, MapsBeyondTheLimitsFailEarly) {
   // An odometry jump of 1e4 m on both axes: a map of 200000² cells.
   EXPECT_THROW(RunGridSlam(TwoScanLog(Pose2(1e4, 1e4, 0.0)), SmallParams()), InputError);
-  RbpfGridSlamParams fine = SmallParams();
-  fine.grid.resolution_m = 1e-9;
+  GridSlamConfig fine = SmallParams();
+  fine.rbpf.grid.resolution_m = 1e-9;
   EXPECT_THROW(RunGridSlam(TwoScanLog(Pose2()), fine), InputError);
-  fine.grid.resolution_m = 1e-4;  // item 12: a room of ~10 m is 1e10 cells, beyond max_cells
+  fine.rbpf.grid.resolution_m = 1e-4;  // item 12: a room of ~10 m is 1e10 cells, beyond max_cells
   EXPECT_THROW(RunGridSlam(TwoScanLog(Pose2()), fine), InputError);
-  RbpfGridSlamParams bad = SmallParams();
-  bad.grid.resolution_m = 0.0;
+  GridSlamConfig bad = SmallParams();
+  bad.rbpf.grid.resolution_m = 0.0;
   EXPECT_THROW(RunGridSlam(TwoScanLog(Pose2()), bad), InputError);
 }
 

@@ -13,6 +13,7 @@
 #include "slamkit/filters/grid/gaussian_proposal.hpp"
 #include "slamkit/filters/grid/grid_map_view.hpp"
 #include "slamkit/filters/grid/scan_matcher.hpp"
+#include "slamkit/filters/grid_slam.hpp"
 #include "slamkit/filters/particles/particle_set.hpp"
 #include "slamkit/filters/particles/particle_streams.hpp"
 #include "slamkit/filters/particles/path_tree.hpp"
@@ -192,13 +193,13 @@ struct GridParticle {
 // Maps share unchanged tiles (copy-on-write), so resampling copies are cheap. Particles are
 // processed in parallel; each draws from its own stream (ParticleStreams), so a seed fixes the
 // result whatever the thread count.
-class RbpfGridSlam {
+class RbpfGridSlam final : public GridSlam {
  public:
   explicit RbpfGridSlam(const RbpfGridSlamParams& params, GridWeightFactor extra_factor = {});
-  ~RbpfGridSlam();
+  ~RbpfGridSlam() override;
 
   // Takes the next scan (with its odometry); returns whether the filter updated on it.
-  bool ProcessScan(const LaserScan& scan);
+  bool ProcessScan(const LaserScan& scan) override;
   // The odometry heading drift in use: the configured one, or its running estimate.
   double heading_drift_rad_per_m() const { return heading_drift_rad_per_m_; }
 
@@ -208,18 +209,23 @@ class RbpfGridSlam {
   void SetSecondLayer(int i, std::shared_ptr<const OccupancyGrid> layer);
 
   int BestParticle() const;
-  const OccupancyGrid& BestMap() const;
+  const OccupancyGrid& BestMap() const override;
   // The best particle's path: one pose per processed scan (t = the scan's); a scan between updates
   // is placed relative to the particle's pose at the last update as it was tracked. Scans since
   // the last update are tracked here if the next update has not done it yet.
-  Trajectory BestTrajectory();
-  Pose2 CurrentPose();
+  Trajectory BestTrajectory() override;
+  Pose2 CurrentPose() override;
   int updates() const { return updates_; }
   int resamples() const { return resamples_; }
   double last_neff() const { return particles_.last_neff(); }
   // The particles' health (see RbpfGridSlamParams::health) and the tracked poses of the scans,
   // unless health.mode is kOff; NumericalError naming the particle or scan if it fails.
-  void CheckOutputHealth() const;
+  void CheckOutputHealth() const override;
+  GridSlamStats Stats() const override {
+    return {.updates = updates_,
+            .resamples = resamples_,
+            .heading_drift_in_use_rad_per_m = heading_drift_rad_per_m_};
+  }
 
  private:
   bool ProcessCalibratedScan(const LaserScan& scan);

@@ -8,12 +8,13 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/heading_drift.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
-#include "slamkit/filters/grid/rbpf_grid_slam.hpp"
+#include "slamkit/filters/grid/grid_slam_factory.hpp"
+#include "slamkit/filters/grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 
 namespace slamkit {
 
-// RbpfGridSlam over a whole CARMEN log.
+// A grid SLAM over a whole CARMEN log.
 struct GridRunResult {
   Trajectory trajectory;  // one pose per scan of the log, t as in the log
   OccupancyGrid map;      // the best particle's
@@ -29,12 +30,17 @@ struct GridRunResult {
   double heading_drift_in_use_rad_per_m = 0.0;
 };
 
-// `progress(done, total)` is called every few scans from the calling thread.
-GridRunResult RunGridSlam(const CarmenLog& log, const RbpfGridSlamParams& params,
+// `slam` over every scan of `log`; `progress(done, total)` is called every few scans from the
+// calling thread. Throws InputError when the log has no scan or its values do not fit the
+// filter's map, NumericalError when the filter's state is not healthy at the end.
+GridRunResult RunGridSlam(const CarmenLog& log, GridSlam& slam,
+                          const std::function<void(int, int)>& progress = {});
+// The same with the filter `config` names (MakeGridSlam); its params' errors are InputErrors.
+GridRunResult RunGridSlam(const CarmenLog& log, const GridSlamConfig& config,
                           const std::function<void(int, int)>& progress = {});
 
 // metrics.json of a grid run (README's output contract); `relations` and `reference` may be null.
-nlohmann::json GridMetrics(const GridRunResult& result, const RbpfGridSlamParams& params,
+nlohmann::json GridMetrics(const GridRunResult& result, const GridSlamConfig& config,
                            const RelationErrorStats* relations,
                            const ReferenceComparison* reference, double peak_rss_mib);
 
