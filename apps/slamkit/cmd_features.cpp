@@ -9,8 +9,9 @@
 
 #include "commands.hpp"
 #include "feature_outputs.hpp"
-#include "grid_common.hpp"
 #include "log_input.hpp"
+#include "options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/runners/features/feature_log_config.hpp"

@@ -12,8 +12,10 @@
 #include <tbb/global_control.h>
 
 #include "commands.hpp"
-#include "grid_common.hpp"
+#include "grid_outputs.hpp"
 #include "log_input.hpp"
+#include "options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
@@ -106,7 +108,7 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand("grid", "occupancy-grid RBPF SLAM on a CARMEN laser log");
   AddLogInputOptions(cmd, o->input);
   cmd->add_option("--out", o->out, "output directory")->required();
-  const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->slam.rbpf);
+  const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->slam);
   CLI::Option* config =
       cmd->add_option("--config", o->config,
                       "the filter's parameters from a YAML file (configs/grid.yaml); instead of "

@@ -13,7 +13,9 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "grid_common.hpp"
+#include "grid_outputs.hpp"
+#include "options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"
@@ -142,7 +144,7 @@ void RegisterGridSim(CLI::App& app, int& exit_code) {
       "occupancy-grid RBPF SLAM on a simulated laser run (SPEC S4 maze, a map or a walls file)");
   cmd->add_option("--out", o->out, "output directory")->required();
   AddSimulationOptions(cmd, *o);
-  AddGridFilterOptions(cmd, o->slam.rbpf);
+  AddGridFilterOptions(cmd, o->slam);
   cmd->callback([o, &exit_code] {
     exit_code = RunGridSimCommand(*o);
   });

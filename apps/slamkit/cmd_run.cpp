@@ -9,7 +9,9 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "grid_common.hpp"
+#include "grid_outputs.hpp"
+#include "options.hpp"
+#include "output_dir.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"

@@ -8,7 +8,8 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
-#include "grid_common.hpp"
+#include "options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/runners/landmark/active_outputs.hpp"

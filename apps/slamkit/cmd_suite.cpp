@@ -24,7 +24,8 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "grid_common.hpp"
+#include "options.hpp"
+#include "output_dir.hpp"
 #include "progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"

@@ -5,7 +5,8 @@
 #include <exception>
 #include <map>
 
-#include "grid_common.hpp"
+#include "grid_outputs.hpp"
+#include "options.hpp"
 #include "progress.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"

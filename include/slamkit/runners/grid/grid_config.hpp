@@ -5,8 +5,13 @@
 #include <nlohmann/json.hpp>
 
 #include "slamkit/filters/grid/grid_slam_factory.hpp"
+#include "slamkit/io/param_table.hpp"
 
 namespace slamkit {
+
+// The parameters of a grid SLAM's config, pointing into `config`: what LoadGridConfig reads,
+// GridParamsJson writes and `slamkit grid`'s filter options set (the lines with a flag).
+config::ParamTable GridParamTable(GridSlamConfig& config);
 
 // Reads a grid SLAM's config from a YAML file: `backend` (rbpf, the default, the only one so
 // far) and that back end's parameters at the top level (configs/grid.yaml lists every key with
