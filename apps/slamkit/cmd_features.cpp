@@ -72,7 +72,8 @@ int RunFeaturesCommand(FeaturesOptions o) {
   const FeatureLogResult result =
       RunFeatureSlamOnLog(log, o.params, [progress](int done, int) { progress->Update(done); });
   const LogEvaluation eval =
-      EvaluateOnLog(o.input, result.trajectory, odometry, std::move(relations), reference);
+      EvaluateOnLog(result.trajectory, odometry, std::move(relations), reference,
+                    ScoringOf(o.input));
   nlohmann::json metrics =
       FeatureLogMetrics(result, o.params, eval.relations ? &*eval.relations : nullptr,
                         eval.reference ? &*eval.reference : nullptr);

@@ -84,7 +84,8 @@ int RunGridCommand(const GridOptions& o) {
   const GridRunResult result =
       RunGridSlam(log, params, [progress](int done, int) { progress->Update(done); });
   const LogEvaluation eval =
-      EvaluateOnLog(o.input, result.trajectory, odometry, std::move(relations), reference);
+      EvaluateOnLog(result.trajectory, odometry, std::move(relations), reference,
+                    ScoringOf(o.input));
 
   const std::filesystem::path& dir = output.staging();
   const std::string title = std::filesystem::path(o.input.log).filename().string();

@@ -103,36 +103,6 @@ std::optional<Trajectory> LoadReference(const LogInput& in, const CarmenLog& log
   return reference;
 }
 
-LogEvaluation EvaluateOnLog(const LogInput& in, const Trajectory& estimate,
-                            const Trajectory& odometry, std::vector<PoseRelation> relations,
-                            const std::optional<Trajectory>& reference) {
-  LogEvaluation e;
-  try {
-    // A run that stopped early, or over --max-scans, is scored on what it covered.
-    if (in.max_scans > 0 || estimate.size() < odometry.size()) {
-      relations = RelationsCovered(estimate, relations);
-    }
-    if (!relations.empty()) {
-      e.relations = EvaluateRelations(estimate, relations);
-      e.odometry_relations = EvaluateRelations(odometry, relations);
-    }
-    if (reference) {
-      const PairBy pair_by = in.reference_from_log ? PairBy::kIndex : in.pair_by;
-      Trajectory covered = *reference;
-      if (pair_by == PairBy::kIndex && covered.size() > estimate.size()) {
-        covered.resize(estimate.size());
-      }
-      Trajectory odometry_covered(odometry.begin(),
-                                  odometry.begin() + std::min(odometry.size(), estimate.size()));
-      e.reference = CompareWithReference(estimate, covered, pair_by);
-      e.odometry_reference = CompareWithReference(odometry_covered, covered, pair_by);
-    }
-  } catch (const std::exception& ex) {
-    e.error = ex.what();
-  }
-  return e;
-}
-
 void AddLogInputMetrics(const LogInput& in, const CarmenLog& log, const LogEvaluation& e,
                         nlohmann::json& metrics) {
   metrics["log"] = in.log;
@@ -143,16 +113,12 @@ void AddLogInputMetrics(const LogInput& in, const CarmenLog& log, const LogEvalu
   metrics["skipped_lines"] = log.skipped_lines;
   metrics["no_return_beams"] = log.no_return_beams;
   metrics["reader_notes"] = log.notes;
-  if (e.odometry_relations) {
-    metrics["odometry_relations_trans_mean_m"] = e.odometry_relations->trans_mean_m;
-    metrics["odometry_relations_rot_mean_deg"] = e.odometry_relations->rot_mean_deg;
-  }
-  if (e.odometry_reference) {
-    metrics["odometry_ate_rmse_m"] = e.odometry_reference->ate.rmse_m;
-    metrics["odometry_rpe_trans_mean_m"] = e.odometry_reference->rpe.trans_mean_m;
-    metrics["odometry_rpe_rot_mean_deg"] = e.odometry_reference->rpe.rot_mean_deg;
-  }
-  if (!e.error.empty()) metrics["evaluation_error"] = e.error;
+  AddBaselineMetrics(e, metrics);
+}
+
+LogScoringParams ScoringOf(const LogInput& input) {
+  return {.pair_by = input.reference_from_log ? PairBy::kIndex : input.pair_by,
+          .partial_log = input.max_scans > 0};
 }
 
 int ReportEvaluation(const LogInput& in, const LogEvaluation& e, const std::string& out) {

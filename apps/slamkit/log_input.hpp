@@ -10,6 +10,7 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
 #include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/runners/common/log_scoring.hpp"
 
 namespace slamkit::app {
 
@@ -39,20 +40,9 @@ CarmenLog ReadInputLog(const LogInput& input);
 std::vector<PoseRelation> ReadInputRelations(const LogInput& input);
 std::optional<Trajectory> LoadReference(const LogInput& input, const CarmenLog& log);
 
-// The evaluations after the run, of the estimate and of the log's raw odometry (the baseline
-// the estimate must beat). A failing one is recorded in `error`, never allowed to lose the run's
-// outputs.
-struct LogEvaluation {
-  std::optional<RelationErrorStats> relations;
-  std::optional<ReferenceComparison> reference;
-  std::optional<RelationErrorStats> odometry_relations;
-  std::optional<ReferenceComparison> odometry_reference;
-  std::string error;
-};
-
-LogEvaluation EvaluateOnLog(const LogInput& input, const Trajectory& estimate,
-                            const Trajectory& odometry, std::vector<PoseRelation> relations,
-                            const std::optional<Trajectory>& reference);
+// How the options score a run (runners' EvaluateOnLog): the pairing, and whether the run
+// covered only the first --max-scans scans.
+LogScoringParams ScoringOf(const LogInput& input);
 
 // metrics.json's keys of the input and of the odometry's evaluation: log, reference, pair_by,
 // skipped_lines, no_return_beams, reader_notes, odometry_*, evaluation_error.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include <Eigen/Eigenvalues>
 
@@ -65,6 +66,29 @@ void AssociationScorer::Add(LandmarkId true_id, AssociationOutcome outcome,
       ++score_.dropped;
       break;
   }
+}
+
+IdAgreement AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
+                                 int sightings) {
+  std::map<std::pair<int, LandmarkId>, int> shared;
+  for (const auto& pair : assigned) {
+    if (pair.first >= 0) ++shared[pair];
+  }
+  std::vector<std::pair<int, std::pair<int, LandmarkId>>> by_count;
+  for (const auto& [pair, count] : shared) by_count.push_back({count, pair});
+  std::stable_sort(by_count.begin(), by_count.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  IdAgreement out;
+  std::set<LandmarkId> theirs_taken;
+  int agree = 0;
+  for (const auto& [count, pair] : by_count) {
+    if (out.pairs.count(pair.first) || theirs_taken.count(pair.second)) continue;
+    out.pairs[pair.first] = pair.second;
+    theirs_taken.insert(pair.second);
+    agree += count;
+  }
+  out.share = sightings > 0 ? double(agree) / double(sightings) : 1.0;
+  return out;
 }
 
 }  // namespace slamkit

@@ -56,4 +56,13 @@ Eigen::Matrix2d RangeBearingModel::NoiseCovariance() const {
       .asDiagonal();
 }
 
+Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_range_m,
+                                       double sigma_bearing_rad) {
+  Eigen::Matrix2d J_xy_rb;
+  InvertRangeBearing(Pose2(), {z.norm(), std::atan2(z.y(), z.x())}, nullptr, &J_xy_rb);
+  const Eigen::Vector2d variances(sigma_range_m * sigma_range_m,
+                                  sigma_bearing_rad * sigma_bearing_rad);
+  return J_xy_rb * variances.asDiagonal() * J_xy_rb.transpose();
+}
+
 }  // namespace slamkit

@@ -10,6 +10,23 @@
 namespace slamkit {
 namespace {
 
+// Landmark 0 carries the reference's id 7 six times and id 8 twice; landmark 1 carries id 8
+// three times: the one-to-one matching takes 0 -> 7 and 1 -> 8, and the agreement counts the
+// sightings on those pairs (9 of 12, one sighting unmapped).
+TEST(AssociationAgreement, MatchesOneToOneByTheLargestSharedCounts) {
+  std::vector<std::pair<int, LandmarkId>> assigned;
+  for (int i = 0; i < 6; ++i) assigned.push_back({0, 7});
+  for (int i = 0; i < 2; ++i) assigned.push_back({0, 8});
+  for (int i = 0; i < 3; ++i) assigned.push_back({1, 8});
+  assigned.push_back({-1, 9});
+  const IdAgreement a = AssociationAgreement(assigned, 12);
+  EXPECT_DOUBLE_EQ(a.share, 9.0 / 12.0);
+  ASSERT_EQ(a.pairs.size(), 2u);
+  EXPECT_EQ(a.pairs.at(0), 7);
+  EXPECT_EQ(a.pairs.at(1), 8);
+  EXPECT_DOUBLE_EQ(AssociationAgreement({}, 0).share, 1.0);
+}
+
 TEST(Nees, IsMahalanobisOfError) {
   Eigen::Matrix3d C = Eigen::Vector3d(4.0, 1.0, 0.25).asDiagonal();
   EXPECT_NEAR(Nees({2.0, 1.0, 0.5}, C), 1.0 + 1.0 + 1.0, 1e-12);

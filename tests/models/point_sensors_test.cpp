@@ -46,6 +46,20 @@ TEST(RelativePoint, JacobiansMatchCentralDifferences) {
   ExpectSensorJacobians(RelativePointModel(), -1);
 }
 
+// Ahead on the x axis the range error is along x and the bearing error along y, scaled by the
+// range; the covariance turns with the sighting's bearing.
+TEST(RangeBearingCovariance, IsTheRangeAndBearingNoiseInCartesianAxes) {
+  const Eigen::Matrix2d ahead = RangeBearingCovariance({10.0, 0.0}, 0.1, 0.01);
+  EXPECT_NEAR(ahead(0, 0), 0.01, 1e-12);
+  EXPECT_NEAR(ahead(1, 1), 0.01, 1e-12);  // (10 m × 0.01 rad)²
+  EXPECT_NEAR(ahead(0, 1), 0.0, 1e-12);
+  const Eigen::Matrix2d left = RangeBearingCovariance({0.0, 4.0}, 0.1, 0.01);
+  EXPECT_NEAR(left(1, 1), 0.01, 1e-12);
+  EXPECT_NEAR(left(0, 0), 0.0016, 1e-12);  // (4 m × 0.01 rad)²
+  const Eigen::Matrix2d diagonal = RangeBearingCovariance({3.0, 3.0}, 0.1, 0.0);
+  EXPECT_NEAR(diagonal(0, 1), 0.005, 1e-12);  // all along the ray: σ_r² cos b sin b
+}
+
 TEST(RangeBearing, InnovationWrapsBearing) {
   const RangeBearingModel model;
   const Eigen::Vector2d nu = model.Innovation({5.0, M_PI - 0.01}, {4.0, -M_PI + 0.01});

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <map>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -54,5 +56,17 @@ class AssociationScorer {
   AssociationScore score_;
   std::vector<LandmarkId> mapped_ids_;  // sorted
 };
+
+// One-to-one matching of a filter's landmarks to a reference's ids (a data set's), greedily by
+// the number of sightings they share (largest first); the agreement is the share of all
+// `sightings` that fall on matched pairs. A reference landmark split into two of ours, or two
+// merged into one, loses the smaller part. `assigned` holds (our landmark index, the
+// reference's id) per sighting; an index below 0 (not mapped) agrees with nothing.
+struct IdAgreement {
+  double share = 0.0;
+  std::map<int, LandmarkId> pairs;  // our landmark index → the reference id it was matched to
+};
+IdAgreement AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
+                                 int sightings);
 
 }  // namespace slamkit

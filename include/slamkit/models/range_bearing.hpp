@@ -53,4 +53,10 @@ class RangeBearingModel final : public PointSensorModel {
   RangeBearingParams params_;
 };
 
+// The covariance of a Cartesian sighting `z` (x forward, y left) whose range and bearing have
+// independent errors of σ_r and σ_b: J diag(σ_r², σ_b²) Jᵀ, J = ∂(x, y)/∂(r, b) from the
+// range-bearing model's inverse seen from the origin (SPEC S2, Eq. 8's J_l_z).
+Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_range_m,
+                                       double sigma_bearing_rad);
+
 }  // namespace slamkit

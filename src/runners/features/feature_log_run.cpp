@@ -9,8 +9,8 @@
 #include "slamkit/features/scan_features.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/models/odometry.hpp"
+#include "slamkit/runners/common/log_scoring.hpp"
 #include "slamkit/runners/features/feature_log_config.hpp"
-#include "slamkit/runners/grid/grid_run.hpp"
 
 namespace slamkit {
 namespace {

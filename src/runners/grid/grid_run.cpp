@@ -1,7 +1,5 @@
 #include "slamkit/runners/grid/grid_run.hpp"
 
-#include <sys/resource.h>
-
 #include <chrono>
 #include <stdexcept>
 #include <string>
@@ -85,26 +83,6 @@ GridRunResult RunGridSlam(const CarmenLog& log, const GridSlamConfig& config,
   return out;
 }
 
-void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceComparison* reference,
-                     nlohmann::json& j) {
-  if (relations) {
-    j["relations"] = relations->count;
-    j["relations_trans_mean_m"] = relations->trans_mean_m;
-    j["relations_trans_std_m"] = relations->trans_std_m;
-    j["relations_rot_mean_deg"] = relations->rot_mean_deg;
-    j["relations_rot_std_deg"] = relations->rot_std_deg;
-  }
-  if (reference) {
-    j["ate_rmse_m"] = reference->ate.rmse_m;
-    j["ate_mean_m"] = reference->ate.mean_m;
-    j["ate_max_m"] = reference->ate.max_m;
-    j["rpe_trans_mean_m"] = reference->rpe.trans_mean_m;
-    j["rpe_trans_std_m"] = reference->rpe.trans_std_m;
-    j["rpe_rot_mean_deg"] = reference->rpe.rot_mean_deg;
-    j["rpe_rot_std_deg"] = reference->rpe.rot_std_deg;
-  }
-}
-
 nlohmann::json GridMetrics(const GridRunResult& r, const GridSlamConfig& config,
                            const RelationErrorStats* relations,
                            const ReferenceComparison* reference, double peak_rss_mib) {
@@ -130,26 +108,6 @@ nlohmann::json GridMetrics(const GridRunResult& r, const GridSlamConfig& config,
   }
   j["heading_drift_in_use_rad_per_m"] = r.heading_drift_in_use_rad_per_m;
   return j;
-}
-
-Trajectory LoggedTrajectory(const CarmenLog& log) {
-  Trajectory out;
-  out.reserve(log.scans.size());
-  for (const LaserScan& scan : log.scans) out.push_back({scan.t_s, scan.logged_pose});
-  return out;
-}
-
-Trajectory OdometryTrajectory(const CarmenLog& log) {
-  Trajectory out;
-  out.reserve(log.scans.size());
-  for (const LaserScan& scan : log.scans) out.push_back({scan.t_s, scan.odometry});
-  return out;
-}
-
-double PeakRssMib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
 }  // namespace slamkit

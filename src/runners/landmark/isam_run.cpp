@@ -3,63 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
 #include <memory>
 #include <numeric>
-#include <set>
 #include <stdexcept>
 
 #include "isam_steps.hpp"
 #include "slamkit/eval/alignment.hpp"
+#include "slamkit/eval/errors.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/models/relative_point.hpp"
 
 namespace slamkit {
 namespace {
-
-// One-to-one matching of our landmarks to the file's ids, greedily by the number of sightings
-// they share (largest first); the agreement is the share of all sightings that fall on matched
-// pairs. A file landmark split into two of ours, or two merged into one, loses the smaller part.
-struct Agreement {
-  double share = 0.0;
-  std::map<int, LandmarkId> pairs;  // our landmark index → the file's id it was matched to
-};
-
-Agreement AssociationAgreement(const std::vector<std::pair<int, LandmarkId>>& assigned,
-                               int sightings) {
-  std::map<std::pair<int, LandmarkId>, int> shared;
-  for (const auto& pair : assigned) {
-    if (pair.first >= 0) ++shared[pair];
-  }
-  std::vector<std::pair<int, std::pair<int, LandmarkId>>> by_count;
-  for (const auto& [pair, count] : shared) by_count.push_back({count, pair});
-  std::stable_sort(by_count.begin(), by_count.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  Agreement out;
-  std::set<LandmarkId> theirs_taken;
-  int agree = 0;
-  for (const auto& [count, pair] : by_count) {
-    if (out.pairs.count(pair.first) || theirs_taken.count(pair.second)) continue;
-    out.pairs[pair.first] = pair.second;
-    theirs_taken.insert(pair.second);
-    agree += count;
-  }
-  out.share = sightings > 0 ? double(agree) / double(sightings) : 1.0;
-  return out;
-}
-
-// The covariance of a Cartesian sighting `z` (x forward, y left) whose range and bearing have
-// independent errors of σ_r and σ_b: J diag(σ_r², σ_b²) Jᵀ, J = ∂(x, y)/∂(r, b) from the
-// range-bearing model's inverse seen from the origin.
-Eigen::Matrix2d RangeBearingCovariance(const Eigen::Vector2d& z, double sigma_range_m,
-                                       double sigma_bearing_rad) {
-  Eigen::Matrix2d J_xy_rb;
-  InvertRangeBearing(Pose2(), {z.norm(), std::atan2(z.y(), z.x())}, nullptr, &J_xy_rb);
-  const Eigen::Vector2d variances(sigma_range_m * sigma_range_m,
-                                  sigma_bearing_rad * sigma_bearing_rad);
-  return J_xy_rb * variances.asDiagonal() * J_xy_rb.transpose();
-}
 
 std::optional<HeadingDriftFit> FitFileOdometry(const IsamLog& log, const Trajectory& estimate,
                                                const HeadingDriftParams& params) {
@@ -244,7 +200,7 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   out.dropped = pass.dropped;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.odometry_heading_drift = FitFileOdometry(log, out.estimate, params.heading_drift_fit);
-  const Agreement agreement = AssociationAgreement(pass.assigned, out.sightings);
+  const IdAgreement agreement = AssociationAgreement(pass.assigned, out.sightings);
   out.association_agreement = agreement.share;
   if (params.compare_with_smoothed_reference) {
     try {

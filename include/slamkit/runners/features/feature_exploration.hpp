@@ -7,18 +7,10 @@
 
 #include "slamkit/features/line_extraction.hpp"
 #include "slamkit/filters/features/feature_ekf_slam.hpp"
-#include "slamkit/filters/selection/selection_policies.hpp"
+#include "slamkit/filters/selection/selection_kind.hpp"
 #include "slamkit/runners/features/exploration.hpp"
 
 namespace slamkit {
-
-// The three correction stages of SPEC S1 (and the O(1) form of the second).
-enum class SelectionKind { kAll, kEntropy, kEntropyFast, kCovariance };
-
-// "all", "entropy", "entropy-fast", "covariance"; and back. Throws std::invalid_argument on
-// another name, listing the valid ones.
-SelectionKind SelectionKindOf(const std::string& name);
-std::string SelectionKindName(SelectionKind kind);
 
 struct FeatureSlamParams {
   FeatureEkfSlamParams ekf;
@@ -37,14 +29,7 @@ struct FeatureSlamParams {
   double flops_per_second = 1.0e9;
 };
 
-// The correction's counted floating-point work in an n-state filter: 2n² per applied update
-// (the covariance downdate), plus, for the dense entropy policy, the two n×n Cholesky
-// factorisations (2n³/3) per candidate that its log-determinants take.
-double CorrectionFlops(SelectionKind kind, const SelectionStats& stats, int state_size);
-
-std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(SelectionKind kind,
-                                                     const CovarianceSelectionParams& covariance,
-                                                     const EntropySelectionParams& entropy);
+// The policy `params` names.
 std::unique_ptr<SelectionPolicy> MakeSelectionPolicy(const FeatureSlamParams& params);
 
 // The line-and-corner EKF-SLAM of SPEC S1 as the exploration loop's SLAM. Its modelled cost is

@@ -11,6 +11,7 @@
 #include "slamkit/filters/grid/grid_slam_factory.hpp"
 #include "slamkit/filters/grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/runners/common/log_scoring.hpp"
 
 namespace slamkit {
 
@@ -43,18 +44,5 @@ GridRunResult RunGridSlam(const CarmenLog& log, const GridSlamConfig& config,
 nlohmann::json GridMetrics(const GridRunResult& result, const GridSlamConfig& config,
                            const RelationErrorStats* relations,
                            const ReferenceComparison* reference, double peak_rss_mib);
-
-// The error keys of metrics.json (relations_*, ate_*, rpe_*) for the evaluations given (either
-// may be null).
-void AddErrorMetrics(const RelationErrorStats* relations, const ReferenceComparison* reference,
-                     nlohmann::json& metrics);
-
-// The poses a log gives with its scans (corrected in *-corrected logs), one per scan.
-Trajectory LoggedTrajectory(const CarmenLog& log);
-// The raw odometry at each scan: the baseline every estimate must beat.
-Trajectory OdometryTrajectory(const CarmenLog& log);
-
-// Peak resident memory of this process so far, in MiB.
-double PeakRssMib();
 
 }  // namespace slamkit
