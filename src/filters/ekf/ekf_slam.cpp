@@ -44,61 +44,6 @@ std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params) {
   return std::make_unique<NearestNeighbourAssociator>(params.association);
 }
 
-// A part of a scan (all of it, or one observation) against the filter's current posterior.
-// Landmarks taken earlier in the scan are no candidates.
-class EkfSlam::ScanContext final : public AssociationContext {
- public:
-  // The posterior does not change while the associator runs: the pose, its covariance and the
-  // reach gate are computed here once for all observations and candidates.
-  ScanContext(const EkfSlam& slam, std::span<const PointObservation> observations,
-              const std::vector<char>& taken)
-      : slam_(slam),
-        observations_(observations),
-        taken_(taken),
-        pose_(slam.pose()),
-        P_pose_(slam.ekf_.PoseCovarianceOf(kPoseBlock)),
-        gate_(slam.point_model_.GateFrom(pose_)) {}
-
-  int NumObservations() const override { return static_cast<int>(observations_.size()); }
-  const PointObservation& Observation(int i) const override { return observations_[i]; }
-  int NumLandmarks() const override { return slam_.NumLandmarks(); }
-  std::span<const AssociationCandidate> Candidates(int i) const override {
-    std::vector<AssociationCandidate>& candidates = slam_.candidate_scratch_;
-    candidates.clear();
-    for (int l = 0; l < slam_.NumLandmarks(); ++l) {
-      if (taken_[l] || !gate_.Passes(slam_.LandmarkPosition(l))) continue;
-      candidates.push_back({l, Distance(i, l)});
-    }
-    return candidates;
-  }
-  int LandmarkWithSourceId(LandmarkId id) const override {
-    const auto it = slam_.index_of_id_.find(id);
-    return it == slam_.index_of_id_.end() ? -1 : it->second;
-  }
-  double Distance(int i, int landmark) const override {
-    return slam_.PointDistance(landmark, observations_[i], pose_, P_pose_);
-  }
-  JointInnovation Joint(std::span<const Pairing> hypothesis) const override {
-    std::vector<Linearisation> parts;
-    JointInnovation joint;
-    for (const Pairing& p : hypothesis) {
-      parts.push_back(slam_.LinearisePoint(p.landmark, observations_[p.observation]));
-    }
-    joint.nu.resize(2 * static_cast<int>(parts.size()));
-    for (std::size_t k = 0; k < parts.size(); ++k) joint.nu.segment<2>(2 * k) = parts[k].innovation;
-    joint.S = slam_.ekf_.JointInnovationCovariance(parts);
-    return joint;
-  }
-
- private:
-  const EkfSlam& slam_;
-  std::span<const PointObservation> observations_;
-  const std::vector<char>& taken_;
-  Pose2 pose_;
-  Eigen::Matrix3d P_pose_;
-  PointLandmarkModel::ReachGate gate_;
-};
-
 EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motion,
                  std::unique_ptr<PointSensorModel> sensor, std::unique_ptr<Associator> associator,
                  std::unique_ptr<SelectionPolicy> selection)
@@ -125,9 +70,7 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   ekf_.AddBlock(kPoseKind, pose.vector(), pose_cov);
   fej_model_.Clear();
   fej_model_.SetPriorPose(pose);
-  landmark_blocks_.clear();
-  source_ids_.clear();
-  index_of_id_.clear();
+  landmarks_.Clear();
   predictions_ = 0;
   updates_ = 0;
   health_checks_ = 0;
@@ -156,36 +99,14 @@ void EkfSlam::Predict(const Control& u, double dt_s, const ControlCovariance* co
   }
 }
 
-Linearisation EkfSlam::LinearisePoint(int landmark, const PointObservation& obs) const {
-  const int blocks[] = {kPoseBlock, BlockOf(landmark)};
-  return Linearise(point_model_, ekf_, blocks, obs.z, obs.R);
-}
-
 const ObservationModel& EkfSlam::UpdateModel() const {
   if (params_.jacobians == JacobianEstimates::kFirstEstimates) return fej_model_;
   return point_model_;
 }
 
-MatchedObservation EkfSlam::Matched(int landmark, const PointObservation& obs) const {
-  MatchedObservation m{&UpdateModel(), {kPoseBlock, BlockOf(landmark)}, 2, obs.z, obs.R};
-  return m;
-}
-
 double EkfSlam::MahalanobisDistance(int landmark, const PointObservation& obs) const {
-  return PointDistance(landmark, obs, pose(), ekf_.PoseCovarianceOf(kPoseBlock));
-}
-
-// The generic MahalanobisSquared(LinearisePoint()) at fixed sizes, with the pose and its
-// covariance supplied by the caller (association hoists them out of its candidate loop).
-double EkfSlam::PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
-                              const Eigen::Matrix3d& P_pose) const {
-  PosePointObservation o;
-  o.pose = kPoseBlock;
-  o.point = BlockOf(landmark);
-  o.R = &obs.R;
-  o.P_pose = &P_pose;
-  point_model_.LinearisePosePoint(x, LandmarkPosition(landmark), obs.z, o);
-  return ekf_.MahalanobisSquaredPosePoint(o);
+  return PosePointDistance(ekf_, point_model_, kPoseBlock, BlockOf(landmark), obs, pose(),
+                           ekf_.PoseCovarianceOf(kPoseBlock));
 }
 
 // With kFirstEstimates, H from FirstEstimatesPointModel (Huang, Mourikis, Roumeliotis 2008,
@@ -203,57 +124,30 @@ void EkfSlam::UpdateLandmark(int landmark, const PointObservation& obs) {
 
 // SPEC S2, Eq. 8.
 int EkfSlam::AddLandmark(const PointObservation& obs) {
-  const int observers[] = {kPoseBlock};
-  const int block = AugmentFrom(point_model_, ekf_, observers, obs.z, obs.R);
-  fej_model_.Record(block, ekf_.Mean(block));  // Huang et al. 2008, Sec. IV: its first estimate
+  const int index = AddPointLandmark(ekf_, point_model_, landmarks_, kPoseBlock, obs);
+  fej_model_.Record(BlockOf(index), LandmarkPosition(index));  // Huang et al. 2008, Sec. IV
   unchecked_ = true;
-  const int index = NumLandmarks();
-  landmark_blocks_.push_back(block);
-  source_ids_.push_back(obs.id);
-  if (obs.id != kNoLandmark) index_of_id_.emplace(obs.id, index);
   return index;
 }
 
-// SPEC S1 items 1 and 3: the selection policy chooses which matched observations update the
-// filter, and in what order, from their S, H and R against the current posterior.
-void EkfSlam::SelectAndUpdate(std::span<const PointObservation> part,
-                              const std::vector<AssociationDecision>& decided) {
-  std::vector<MatchedObservation> matched;
-  for (std::size_t i = 0; i < part.size(); ++i) {
-    if (decided[i].kind == AssociationDecision::Kind::kMatched) {
-      matched.push_back(Matched(decided[i].landmark, part[i]));
-    }
-  }
-  if (matched.empty()) return;
-  BlockSelectionSession session(ekf_, std::move(matched), params_.selection_diagnostics);
-  selection_->Select(session);
-  selection_stats_.Add(session.stats());
-}
-
-// SPEC S2, Eq. 8 for every observation association called new; all landmarks it names are
-// taken for the rest of the scan.
-void EkfSlam::AugmentNew(std::span<const PointObservation> part,
-                         std::vector<AssociationDecision> decided, std::vector<char>& taken,
-                         std::vector<AssociationDecision>& decisions) {
-  for (std::size_t i = 0; i < part.size(); ++i) {
-    AssociationDecision& d = decided[i];
-    if (d.kind == AssociationDecision::Kind::kNew) d.landmark = AddLandmark(part[i]);
-    if (d.landmark >= 0) {
-      taken.resize(std::max<std::size_t>(taken.size(), d.landmark + 1), 0);
-      taken[d.landmark] = 1;
-    }
-    decisions.push_back(d);
-  }
-}
-
-// Association, then selection and the sequential updates of the matched observations, then
-// augmentation by the new ones.
+// SPEC S2 / S1 items 1-3: association, selection and the sequential updates of the matched
+// observations, then augmentation by the new ones. The landmarks it names are taken for the rest
+// of the scan.
 void EkfSlam::RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
                           std::vector<AssociationDecision>& decisions) {
-  std::vector<AssociationDecision> decided =
-      associator_->Associate(ScanContext(*this, part, taken));
-  SelectAndUpdate(part, decided);
-  AugmentNew(part, std::move(decided), taken, decisions);
+  const int before = NumLandmarks();
+  PointSightings points({&point_model_, &UpdateModel(), associator_.get()}, landmarks_, part,
+                        taken);
+  LandmarkSightings* const kinds[] = {&points};
+  UpdatePipeline pipeline(ekf_, kPoseBlock, kinds);
+  const SelectionStats stats = pipeline.Run(*selection_, params_.selection_diagnostics);
+  // A part with nothing matched had no selection step to account for.
+  if (stats.candidates > 0) selection_stats_.Add(stats);
+  // Huang et al. 2008, Sec. IV: each new landmark's first estimate, its initialised mean.
+  for (int l = before; l < NumLandmarks(); ++l) fej_model_.Record(BlockOf(l), LandmarkPosition(l));
+  const std::vector<AssociationDecision>& decided = pipeline.Decisions(0);
+  MarkTaken(decided, taken);
+  decisions.insert(decisions.end(), decided.begin(), decided.end());
 }
 
 std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservation> observations) {
@@ -323,7 +217,7 @@ LandmarkMap EkfSlam::Map() const {
   LandmarkMap map;
   map.landmarks.reserve(NumLandmarks());
   for (int i = 0; i < NumLandmarks(); ++i) {
-    map.landmarks.push_back({source_ids_[i], LandmarkPosition(i), LandmarkCovariance(i)});
+    map.landmarks.push_back({LandmarkSourceId(i), LandmarkPosition(i), LandmarkCovariance(i)});
   }
   return map;
 }

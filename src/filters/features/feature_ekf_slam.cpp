@@ -34,68 +34,7 @@ void CheckFinite(const ScanFeatures& scan) {
   }
 }
 
-// SPEC S1: a corner is a point landmark seen in range-bearing.
-std::vector<PointObservation> CornerObservations(const ScanFeatures& scan) {
-  std::vector<PointObservation> out;
-  out.reserve(scan.corners.size());
-  for (const Corner& c : scan.corners) {
-    PointObservation obs;
-    const RangeBearing rb = CornerRangeBearing(c, &obs.R);
-    obs.z << rb.range_m, rb.bearing_rad;
-    out.push_back(obs);
-  }
-  return out;
-}
-
 }  // namespace
-
-// The scan's corners against the corner landmarks: a candidate must pass the reach gate and be of
-// the sighting's kind (concave or convex), so the associator never pairs the two kinds.
-class FeatureEkfSlam::CornerContext final : public AssociationContext {
- public:
-  CornerContext(const FeatureEkfSlam& slam, const ScanFeatures& scan,
-                const std::vector<PointObservation>& observations)
-      : slam_(slam), scan_(scan), observations_(observations) {}
-
-  int NumObservations() const override { return static_cast<int>(observations_.size()); }
-  const PointObservation& Observation(int i) const override { return observations_[i]; }
-  int NumLandmarks() const override { return slam_.NumCorners(); }
-  std::span<const AssociationCandidate> Candidates(int i) const override {
-    candidates_.clear();
-    for (int c = 0; c < slam_.NumCorners(); ++c) {
-      const int blocks[] = {kPoseBlock, slam_.corner_blocks_[c]};
-      if (slam_.corner_kinds_[c] != scan_.corners[i].kind) continue;
-      if (!slam_.corner_model_.Gate(slam_.ekf_, blocks)) continue;
-      candidates_.push_back({c, Distance(i, c)});
-    }
-    return candidates_;
-  }
-  int LandmarkWithSourceId(LandmarkId /*id*/) const override { return -1; }
-  double Distance(int i, int corner) const override {
-    return slam_.ekf_.MahalanobisSquared(Linearised(i, corner));
-  }
-  JointInnovation Joint(std::span<const Pairing> hypothesis) const override {
-    std::vector<Linearisation> parts;
-    JointInnovation joint;
-    joint.nu.resize(2 * static_cast<int>(hypothesis.size()));
-    for (const Pairing& p : hypothesis) parts.push_back(Linearised(p.observation, p.landmark));
-    for (std::size_t k = 0; k < parts.size(); ++k) joint.nu.segment<2>(2 * k) = parts[k].innovation;
-    joint.S = slam_.ekf_.JointInnovationCovariance(parts);
-    return joint;
-  }
-
- private:
-  Linearisation Linearised(int i, int corner) const {
-    const int blocks[] = {kPoseBlock, slam_.corner_blocks_[corner]};
-    return Linearise(slam_.corner_model_, slam_.ekf_, blocks, observations_[i].z,
-                     observations_[i].R);
-  }
-
-  const FeatureEkfSlam& slam_;
-  const ScanFeatures& scan_;
-  const std::vector<PointObservation>& observations_;
-  mutable std::vector<AssociationCandidate> candidates_;
-};
 
 FeatureEkfSlam::FeatureEkfSlam(const FeatureEkfSlamParams& params,
                                std::unique_ptr<MotionModel> motion,
@@ -121,8 +60,7 @@ void FeatureEkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   ekf_.Clear();
   ekf_.AddBlock(kPoseKind, pose.vector(), pose_cov);
   lines_.Clear();
-  corner_blocks_.clear();
-  corner_kinds_.clear();
+  corners_.Clear();
   selection_stats_ = {};
   updates_ = 0;
 }
@@ -149,64 +87,37 @@ Eigen::Matrix2d FeatureEkfSlam::LineCovariance(int line) const {
 // together, so it ranks lines and corners on the same footing; new features are added after.
 FeatureDecisions FeatureEkfSlam::Update(const ScanFeatures& robot_frame) {
   CheckFinite(robot_frame);
-  selection_stats_ = {};
-  const std::vector<PointObservation> corners = CornerObservations(robot_frame);
-  FeatureDecisions d;
-  d.lines = line_associator_.Associate(ekf_, kPoseBlock, line_model_, lines_, robot_frame.lines);
-  d.corners = corner_associator_->Associate(CornerContext(*this, robot_frame, corners));
-  std::vector<MatchedObservation> matched = Matched(robot_frame, d, corners);
-  if (!matched.empty()) {
-    BlockSelectionSession session(ekf_, std::move(matched), params_.selection_diagnostics);
-    selection_->Select(session);
-    selection_stats_ = session.stats();
-  }
+  LineSightings lines(line_associator_, line_model_, lines_, robot_frame.lines);
+  CornerSightings corners(corner_model_, *corner_associator_, corners_, robot_frame.corners);
+  LandmarkSightings* const kinds[] = {&lines, &corners};  // lines first: the selection's order
+  UpdatePipeline pipeline(ekf_, kPoseBlock, kinds);
+  pipeline.Associate();
+  selection_stats_ = pipeline.SelectAndUpdate(*selection_, params_.selection_diagnostics);
   ekf_.ApplyPendingDowndate();  // also brings the lines back to ρ ≥ 0
-  ExtendMatchedLines(robot_frame, d);
-  FuseMetLines(d);
-  AugmentNew(robot_frame, corners, d);
+  ExtendMatchedLines(robot_frame, pipeline.Decisions(0));
+  FuseMetLines(pipeline.Decisions(0));
+  pipeline.Augment();
   ++updates_;
   if (params_.health.every_update()) {
     const bool psd = params_.health.PsdDue(updates_, ekf_.StateSize());
     ekf_.CheckHealth(params_.health, psd,
                      "FeatureEkfSlam after update " + std::to_string(updates_));
   }
-  return d;
+  return {pipeline.Decisions(0), pipeline.Decisions(1)};
 }
 
 void FeatureEkfSlam::CheckOutputHealth() const {
   if (params_.health.enabled()) ekf_.CheckHealth(params_.health, true, "FeatureEkfSlam at output");
 }
 
-std::vector<MatchedObservation> FeatureEkfSlam::Matched(
-    const ScanFeatures& scan, const FeatureDecisions& d,
-    const std::vector<PointObservation>& corners) const {
-  std::vector<MatchedObservation> matched;
-  for (std::size_t i = 0; i < scan.lines.size(); ++i) {
-    if (d.lines[i].kind != AssociationDecision::Kind::kMatched) continue;
-    matched.push_back({&line_model_,
-                       {kPoseBlock, lines_.Block(d.lines[i].landmark)},
-                       2,
-                       LineVector(scan.lines[i].line),
-                       scan.lines[i].covariance});
-  }
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    if (d.corners[i].kind != AssociationDecision::Kind::kMatched) continue;
-    matched.push_back({&corner_model_,
-                       {kPoseBlock, corner_blocks_[d.corners[i].landmark]},
-                       2,
-                       corners[i].z,
-                       corners[i].R});
-  }
-  return matched;
-}
-
 // A matched sighting is that wall: its segment, placed from the updated pose, grows the extent
 // (whether or not the selection applied it).
-void FeatureEkfSlam::ExtendMatchedLines(const ScanFeatures& scan, const FeatureDecisions& d) {
+void FeatureEkfSlam::ExtendMatchedLines(const ScanFeatures& scan,
+                                        const std::vector<AssociationDecision>& lines) {
   const Pose2 x = pose();
   for (std::size_t i = 0; i < scan.lines.size(); ++i) {
-    if (d.lines[i].kind != AssociationDecision::Kind::kMatched) continue;
-    const int line = d.lines[i].landmark;
+    if (lines[i].kind != AssociationDecision::Kind::kMatched) continue;
+    const int line = lines[i].landmark;
     lines_.Extend(line, Line(line), x.TransformFrom(scan.lines[i].start_m),
                   x.TransformFrom(scan.lines[i].end_m));
   }
@@ -254,8 +165,8 @@ bool FeatureEkfSlam::NearlySameLine(const PolarLine& a, const LineExtent& ea, co
 // another's, with (ρ, α) compatible (l_i − l_j within the χ² gate of its covariance), is fused
 // with it by the pseudo-observation l_i − l_j = 0, and the later of the two is merged into the
 // earlier. (The merged block stays in the state, tied to the other: BlockEkf removes no block.)
-void FeatureEkfSlam::FuseMetLines(const FeatureDecisions& d) {
-  for (const AssociationDecision& m : d.lines) {
+void FeatureEkfSlam::FuseMetLines(const std::vector<AssociationDecision>& lines) {
+  for (const AssociationDecision& m : lines) {
     if (m.kind != AssociationDecision::Kind::kMatched || !lines_.Active(m.landmark)) continue;
     int i = m.landmark;
     for (int j = 0; j < lines_.size(); ++j) {
@@ -274,27 +185,6 @@ void FeatureEkfSlam::FuseMetLines(const FeatureDecisions& d) {
       lines_.Merge(std::max(i, j), into, Line(into));
       i = into;
     }
-  }
-}
-
-// SPEC S2, Eq. 8 (state augmentation) for every new line and corner.
-void FeatureEkfSlam::AugmentNew(const ScanFeatures& scan,
-                                const std::vector<PointObservation>& corners, FeatureDecisions& d) {
-  const int observers[] = {kPoseBlock};
-  for (std::size_t i = 0; i < scan.lines.size(); ++i) {
-    if (d.lines[i].kind != AssociationDecision::Kind::kNew) continue;
-    const LineSegment& s = scan.lines[i];
-    const int block = AugmentFrom(line_model_, ekf_, observers, LineVector(s.line), s.covariance);
-    const Pose2 x = pose();
-    d.lines[i].landmark = lines_.Add(block, LineOf(ekf_.Mean(block)), x.TransformFrom(s.start_m),
-                                     x.TransformFrom(s.end_m));
-  }
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    if (d.corners[i].kind != AssociationDecision::Kind::kNew) continue;
-    corner_blocks_.push_back(
-        AugmentFrom(corner_model_, ekf_, observers, corners[i].z, corners[i].R));
-    corner_kinds_.push_back(scan.corners[i].kind);
-    d.corners[i].landmark = NumCorners() - 1;
   }
 }
 

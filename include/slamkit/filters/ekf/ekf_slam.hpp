@@ -4,7 +4,6 @@
 #include <memory>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "slamkit/core/ids.hpp"
@@ -15,6 +14,7 @@
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/first_estimates.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/ekf/point_landmarks.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/filters/selection/selection.hpp"
 #include "slamkit/maps/landmark_map.hpp"
@@ -78,9 +78,10 @@ struct EkfSlamParams {
 std::unique_ptr<Associator> MakeAssociator(const EkfSlamParams& params);
 
 // EKF-SLAM with point landmarks (SPEC S1 item 1, S2): a BlockEkf holding one pose and point
-// landmarks, and an update that is a pipeline of injected steps: association (an Associator),
-// selection (a SelectionPolicy), the sequential updates, augmentation of the new landmarks.
-// The updates of one Update() share one deferred covariance downdate (see BlockEkf).
+// landmarks, and an update that is the UpdatePipeline of injected steps over the point kind
+// (PointSightings): association (an Associator), selection (a SelectionPolicy), the sequential
+// updates, augmentation of the new landmarks. The updates of one Update() share one deferred
+// covariance downdate (see BlockEkf).
 class EkfSlam final : public LandmarkSlamFilter {
  public:
   // `associator` defaults to the one params names, `selection` to SelectAll. A policy that ranks
@@ -120,7 +121,7 @@ class EkfSlam final : public LandmarkSlamFilter {
   Pose2 PoseEstimate() const override { return pose(); }
   Pose2 pose() const { return ekf_.PoseOf(kPoseBlock); }
   Eigen::Matrix3d PoseCovariance() const override;
-  int NumLandmarks() const override { return static_cast<int>(source_ids_.size()); }
+  int NumLandmarks() const override { return landmarks_.size(); }
   int StateSize() const { return ekf_.StateSize(); }
   Eigen::Vector2d LandmarkPosition(int landmark) const { return ekf_.Mean(BlockOf(landmark)); }
   Eigen::Matrix2d LandmarkCovariance(int landmark) const {
@@ -129,7 +130,7 @@ class EkfSlam final : public LandmarkSlamFilter {
   // The cross-covariance of landmarks `a` and `b` (their joint covariance's off-diagonal block).
   Eigen::Matrix2d LandmarkCovariance(int a, int b) const;
   // The id of the observation that created the landmark (kNoLandmark if it had none).
-  LandmarkId LandmarkSourceId(int landmark) const { return source_ids_[landmark]; }
+  LandmarkId LandmarkSourceId(int landmark) const { return landmarks_.SourceId(landmark); }
   LandmarkMap Map() const override;
   // The full symmetric covariance (a copy; O(n²), for tests and output).
   Eigen::MatrixXd Covariance() const { return ekf_.Covariance(); }
@@ -140,26 +141,17 @@ class EkfSlam final : public LandmarkSlamFilter {
   const SelectionStats& LastSelectionStats() const { return selection_stats_; }
 
  private:
-  class ScanContext;
   static constexpr int kPoseBlock = 0;
-  int BlockOf(int landmark) const { return landmark_blocks_[landmark]; }
-  Linearisation LinearisePoint(int landmark, const PointObservation& obs) const;
-  double PointDistance(int landmark, const PointObservation& obs, const Pose2& x,
-                       const Eigen::Matrix3d& P_pose) const;
-  MatchedObservation Matched(int landmark, const PointObservation& obs) const;
+  int BlockOf(int landmark) const { return landmarks_.Block(landmark); }
   // The observation model of the updates: point_model_, or fej_model_ with kFirstEstimates.
   const ObservationModel& UpdateModel() const;
   // Where a failed health check happened: "EkfSlam after update 5 (prediction 4, 12
   // landmarks)", "EkfSlam after prediction 4 (…)" or "EkfSlam at output (…)".
   enum class HealthStep { kUpdate, kPrediction, kOutput };
   std::string HealthWhere(HealthStep step) const;
-  // The steps of SPEC S2 / S1 on `part` of a scan (all of it, or one observation).
+  // The UpdatePipeline on `part` of a scan (all of it, or one observation).
   void RunPipeline(std::span<const PointObservation> part, std::vector<char>& taken,
                    std::vector<AssociationDecision>& decisions);
-  void SelectAndUpdate(std::span<const PointObservation> part,
-                       const std::vector<AssociationDecision>& decided);
-  void AugmentNew(std::span<const PointObservation> part, std::vector<AssociationDecision> decided,
-                  std::vector<char>& taken, std::vector<AssociationDecision>& decisions);
 
   EkfSlamParams params_;
   std::unique_ptr<MotionModel> motion_;
@@ -171,12 +163,7 @@ class EkfSlam final : public LandmarkSlamFilter {
   int point_kind_ = -1;
   PointLandmarkModel point_model_;
   FirstEstimatesPointModel fej_model_;  // its prior pose is kept with kCurrent too
-  std::vector<int> landmark_blocks_;
-  std::vector<LandmarkId> source_ids_;
-  std::unordered_map<LandmarkId, int> index_of_id_;
-  // Scratch for ScanContext::Candidates(): a context lives for one observation on the
-  // per-observation schedule, so a buffer of its own would be reallocated for each.
-  mutable std::vector<AssociationCandidate> candidate_scratch_;
+  PointLandmarkMap landmarks_;
   long predictions_ = 0;  // since Reset(), to name the step a health check failed at
   long updates_ = 0;
   long health_checks_ = 0;  // every-update checks of the whole state, for the PSD schedule

@@ -11,6 +11,7 @@
 #include "slamkit/filters/association/data_association.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/features/feature_sightings.hpp"
 #include "slamkit/filters/features/line_association.hpp"
 #include "slamkit/filters/features/line_landmark_model.hpp"
 #include "slamkit/filters/selection/selection.hpp"
@@ -48,11 +49,12 @@ struct FeatureDecisions {
 
 // EKF-SLAM with line and corner landmarks (SPEC S1): a BlockEkf holding one pose, lines of the
 // line kind (LineLandmarkModel; extents in a LineMap) and corners of a point kind, and a per-scan
-// pipeline of parts: line association (LineAssociator), corner association (an Associator, by
-// default nearest neighbour, offered only corners of the sighting's kind), one selection step
-// (a SelectionPolicy) over the matched lines and corners together, the sequential updates, then
-// augmentation by the new features. Corners are point landmarks observed in range-bearing
-// (CornerRangeBearing): PointLandmarkModel over a RangeBearingModel is their model unchanged.
+// UpdatePipeline over two kinds, LineSightings and CornerSightings: line association
+// (LineAssociator), corner association (an Associator, by default nearest neighbour, offered only
+// corners of the sighting's kind), one selection step (a SelectionPolicy) over the matched lines
+// and corners together, the sequential updates, then augmentation by the new features. Corners
+// are point landmarks observed in range-bearing (CornerRangeBearing): PointLandmarkModel over a
+// RangeBearingModel is their model unchanged.
 //
 // (EkfSlam is the point-landmark filter behind LandmarkSlamFilter; its observations are
 // PointObservations, so the line kind, whose sightings carry segments, gets this filter of its
@@ -90,9 +92,9 @@ class FeatureEkfSlam {
   PolarLine Line(int line) const { return LineOf(ekf_.Mean(lines_.Block(line))); }
   Eigen::Matrix2d LineCovariance(int line) const;
   const LineExtent& LineExtentOf(int line) const { return lines_.Extent(line); }
-  int NumCorners() const { return static_cast<int>(corner_blocks_.size()); }
-  Eigen::Vector2d CornerPosition(int corner) const { return ekf_.Mean(corner_blocks_[corner]); }
-  CornerKind CornerKindOf(int corner) const { return corner_kinds_[corner]; }
+  int NumCorners() const { return corners_.size(); }
+  Eigen::Vector2d CornerPosition(int corner) const { return ekf_.Mean(corners_.Block(corner)); }
+  CornerKind CornerKindOf(int corner) const { return corners_.Kind(corner); }
   const BlockEkf& ekf() const { return ekf_; }
   // What the selection policy did in the last Update().
   const SelectionStats& LastSelectionStats() const { return selection_stats_; }
@@ -101,17 +103,13 @@ class FeatureEkfSlam {
   void SetSelectionDiagnostics(bool on) { params_.selection_diagnostics = on; }
 
  private:
-  class CornerContext;
   static constexpr int kPoseBlock = 0;
-  std::vector<MatchedObservation> Matched(const ScanFeatures& scan, const FeatureDecisions& d,
-                                          const std::vector<PointObservation>& corners) const;
-  void ExtendMatchedLines(const ScanFeatures& scan, const FeatureDecisions& d);
+  // `lines`: the decisions on the scan's lines.
+  void ExtendMatchedLines(const ScanFeatures& scan, const std::vector<AssociationDecision>& lines);
   Linearisation SameLine(int i, int j) const;
   bool NearlySameLine(const PolarLine& a, const LineExtent& ea, const PolarLine& b,
                       const LineExtent& eb) const;
-  void FuseMetLines(const FeatureDecisions& d);
-  void AugmentNew(const ScanFeatures& scan, const std::vector<PointObservation>& corners,
-                  FeatureDecisions& d);
+  void FuseMetLines(const std::vector<AssociationDecision>& lines);
 
   FeatureEkfSlamParams params_;
   std::unique_ptr<MotionModel> motion_;
@@ -125,8 +123,7 @@ class FeatureEkfSlam {
   LineLandmarkModel line_model_;
   PointLandmarkModel corner_model_;
   LineMap lines_;
-  std::vector<int> corner_blocks_;
-  std::vector<CornerKind> corner_kinds_;  // beside each corner's block: the association constraint
+  CornerMap corners_;
   SelectionStats selection_stats_;
   long updates_ = 0;  // since Reset(), to name the step a health check failed at
 };
