@@ -25,16 +25,7 @@ namespace slamkit {
 // The matcher that tracks scans between updates. Its guesses are odometry-close (one scan's
 // motion from the previous tracked pose), so it skips the coarse pass and starts with small
 // steps; a tight prior on translation keeps it from sliding along corridors whose ends are not
-// mapped yet, which left it free to correct mainly the heading, where odometry errs most (on
-// Intel: relations 0.0451 m / 1.98° with odometry between updates, 0.0348 m / 0.64° tracked
-// without the prior, 0.0304 m / 0.62° with it). Checked on two logs with today's filter (seed 1,
-// 30 particles; Intel relations, CSAIL = suite/csail.log.gz against its reference):
-//   prior σ_xy  Intel relations (trans, rot)        CSAIL ATE rms (max), RPE trans, rot
-//   none        0.0288 ± 0.0256 m, 0.499 ± 0.503°   0.201 m (0.55), 0.065 m, 1.42°
-//   0.01 m      0.0273 ± 0.0226 m, 0.545 ± 0.593°   0.253 m (0.55), 0.064 m, 1.35°
-//   0.03 m      0.0300 ± 0.0271 m, 0.580 ± 0.594°   2.160 m (10.1), 0.063 m, 1.64°
-// No value wins on both logs (none is better in Intel's rotation and CSAIL's ATE, worse in
-// Intel's translation and CSAIL's rotation RPE; 0.03 m loses CSAIL), so 0.01 m stays.
+// mapped yet (docs/grid_defaults.md, "Tracking between updates").
 inline ScanMatcherParams TrackingMatcherParams() {
   ScanMatcherParams params;
   params.coarse_pass = false;
@@ -48,8 +39,7 @@ inline ScanMatcherParams TrackingMatcherParams() {
 // Where a particle's pose at an update comes from once its motion sample is matched.
 enum class ProposalScheme {
   // A draw from the Gaussian fitted around the scan match, weighted by its normaliser (Grisetti et
-  // al. 2007). On Intel (30 particles, seeds 1-5) relations 0.0270 m / 0.54° on average against
-  // 0.0276 m / 0.58° for kScanMatch, for about 15 % more time.
+  // al. 2007).
   kGaussian,
   // The match itself, weighted by the scan likelihood there (ROS GMapping's shortcut).
   kScanMatch,
@@ -60,10 +50,7 @@ enum class TrackingMode {
   // Each is matched against the best particle's map (one match per scan, not per particle),
   // starting from the previous scan's pose moved by odometry, and the particles then move by that
   // tracked motion (the best particle's last tracked pose plus one odometry step) instead of raw
-  // odometry: a better prior where odometry drifts in heading. On Intel (30 particles, seeds 1-10)
-  // relations averaged 0.0269 m / 0.537° (worst seed 0.0301 m) against
-  // 0.0278 m / 0.550° (worst 0.0324 m) for kTrackOnly, which in turn can track concurrently with
-  // the particles.
+  // odometry: a better prior where odometry drifts in heading.
   kTrackedMotion,
   // Tracked as above, but the particles move by raw odometry.
   kTrackOnly,
@@ -96,9 +83,8 @@ struct RbpfGridSlamParams {
   // Log-likelihoods are multiplied by gain / particles before normalising (GMapping's ogain = 3
   // gives gain 1/3): it smooths the weights so that one scan does not decide the whole set.
   double likelihood_gain = 1.0 / 3.0;
-  // Odometry noise (srr, srt, str, stt). str, the heading noise per metre driven, is 0.02 rad/m
-  // (1.1°/m) rather than 0.05: over the suite's seeds 1-10, 59 of 60 runs within their goals
-  // against 57, no log's mean worse by more than 1 mm (docs/grid_defaults.md).
+  // Odometry noise (srr [m/m], srt [m/rad], str [rad/m], stt [rad/rad]); why str is 0.02 rad/m:
+  // docs/grid_defaults.md.
   OdometryNoiseParams motion{.srr = 0.05, .srt = 0.05, .str = 0.02, .stt = 0.05};
   // A calibration of the log's odometry: each step between scans turns by this times its
   // distance more than the log says (a steering or wheel-radius offset turns a wheel odometry by a
@@ -113,12 +99,9 @@ struct RbpfGridSlamParams {
   double heading_drift_prior_m2 = 50.0;
   // The laser's usable range, the one setting of it: beams longer than this are cut when they go
   // into the maps (free space only) and are matched neither by the particles nor by the tracking.
-  // 50 m against 30 m on the suite: 28 of 30 runs within their goals against 26; acapulco's open
-  // halls gain most (0.143 -> 0.119 m), belgioioso loses two seeds (docs/grid_defaults.md).
   double usable_range_m = 50.0;
   // Whether a scan's free-space update spares the cells its own returns hit (ScanInsertionParams):
-  // beams grazing a wall no longer erode the wall cells their neighbours hit. On the suite over
-  // seeds 1-5 it meets 24 of the 30 goals against 21 without (docs/grid_defaults.md).
+  // beams grazing a wall no longer erode the wall cells their neighbours hit.
   bool misses_spare_scan_hits = true;
   // How far a no-return beam marks free space (ScanInsertionParams); infinity: the usable range.
   double no_return_ray_length_m = std::numeric_limits<double>::infinity();
@@ -133,11 +116,9 @@ struct RbpfGridSlamParams {
   // Where each particle's scan match starts at an update: for this fraction of the particles
   // (drawn at each update), at a draw of the motion model (GMapping's code); for the others, at
   // the odometry prediction x_{t-1} ⊕ u_{t-1} without noise (Grisetti et al. 2007, Table 1,
-  // step 2), where the motion noise shapes only the proposal and the weight. Draws scatter with
-  // wide motion noise (acapulco, noise 0.1: 0.30-9.1 m over seeds 1-5, against 0.15-0.18 m
-  // from the prediction). A prediction-started match that leaves a direction unconstrained is
-  // made again from the draw, which keeps the motion model's spread there (KeepConstrainedPart).
-  // Suite figures: docs/grid_defaults.md.
+  // step 2), where the motion noise shapes only the proposal and the weight. A prediction-started
+  // match that leaves a direction unconstrained is made again from the draw, which keeps the
+  // motion model's spread there (KeepConstrainedPart).
   double sampled_start_fraction = 0.0;
   // Each prediction-started match first sweeps its heading over this many standard deviations
   // of the motion model's heading noise (matcher.heading_sweep_rad); 0: no sweep.
@@ -146,21 +127,13 @@ struct RbpfGridSlamParams {
   TrackingMode tracking_mode = TrackingMode::kTrackedMotion;
   ScanMatcherParams tracking = TrackingMatcherParams();
   // A tracked pose further than this from its odometry guess is a slide (along a corridor, into
-  // unmapped space) rather than a correction: the guess is kept. Checked on two logs (seed 1, 30
-  // particles; both gates set together; CSAIL = suite/csail.log.gz against its reference):
-  //   gates          Intel relations (trans, rot)        CSAIL ATE rms (max), RPE trans, rot
-  //   0.05 m/rad     0.0274 ± 0.0242 m, 0.642 ± 1.054°   0.110 m (0.45), 0.066 m, 1.54°
-  //   0.1 m/rad      0.0273 ± 0.0226 m, 0.545 ± 0.593°   0.253 m (0.55), 0.064 m, 1.35°
-  //   0.2 m/rad      0.0292 ± 0.0292 m, 0.533 ± 0.532°   0.300 m (0.66), 0.062 m, 1.33°
-  // The logs disagree (0.05 helps CSAIL's ATE but hurts Intel's rotation and CSAIL's RPE; 0.2 is
-  // worse in Intel's translation and CSAIL's ATE), so 0.1 stays. One seed each.
+  // unmapped space) rather than a correction: the guess is kept.
   double tracking_max_correction_m = 0.1;
   double tracking_max_correction_rad = 0.1;
   // A scan this far or further from the one before it (by odometry) is an update whatever the
   // thresholds above: the tracking is meant for dense scans, and between sparse ones (a scan a
   // metre, as the CARMEN suite's logs) the odometry can misjudge a turn by more than the
-  // tracking's gates accept, which then carries the error into the next update's start (csail
-  // seeds 1 and 3 broke so). Intel's scans, centimetres apart, are tracked as before.
+  // tracking's gates accept, which then carries the error into the next update's start.
   // Infinity: never.
   double tracking_max_step_m = 0.5;
   double tracking_max_step_rad = 0.25;
