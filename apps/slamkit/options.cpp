@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <variant>
 
@@ -126,7 +128,9 @@ CLI::Option* AddParamOption(CLI::App* cmd, const config::Param& p) {
   struct Visitor {
     CLI::App* cmd;
     const config::Param& p;
-    CLI::Option* operator()(double* v) const { return AddNumber(cmd, p, v); }
+    CLI::Option* operator()(double* v) const {
+      return p.degrees ? Unsupported() : AddNumber(cmd, p, v);
+    }
     CLI::Option* operator()(float* v) const {
       return cmd->add_option(p.flag, *v, HelpOf(p))->capture_default_str();
     }
@@ -134,6 +138,21 @@ CLI::Option* AddParamOption(CLI::App* cmd, const config::Param& p) {
       return cmd->add_option(p.flag, *v, HelpOf(p))
           ->capture_default_str()
           ->check(CLI::Range(p.min, p.max_int));
+    }
+    CLI::Option* operator()(long* v) const {
+      return cmd->add_option(p.flag, *v, HelpOf(p))
+          ->capture_default_str()
+          ->check(CLI::Range(p.min, p.max_int));
+    }
+    CLI::Option* operator()(std::string* v) const {
+      return cmd->add_option(p.flag, *v, HelpOf(p))->capture_default_str();
+    }
+    // Kinds no flag takes yet: a table giving them one is a mistake of the code.
+    CLI::Option* operator()(Eigen::Vector2d*) const { return Unsupported(); }
+    CLI::Option* operator()(std::optional<double>*) const { return Unsupported(); }
+    CLI::Option* operator()(std::monostate) const { return Unsupported(); }
+    CLI::Option* Unsupported() const {
+      throw std::logic_error("AddParamOptions: no command-line kind for " + p.Path());
     }
     CLI::Option* operator()(std::uint64_t* v) const {
       return cmd->add_option(p.flag, *v, HelpOf(p))->check(SeedNumber())->capture_default_str();

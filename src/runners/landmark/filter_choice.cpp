@@ -52,8 +52,11 @@ LandmarkFilterFactory FactoryForFilter(FilterKind kind, int particles,
   if (particles < 1) {
     throw InputError("FastSLAM needs at least one particle, not " + std::to_string(particles));
   }
-  return FastSlamFactory(FastSlamParamsFor(kind, particles, config.ekf), config.scenario.vehicle,
-                         config.scenario.sensor);
+  FastSlamParams fastslam = FastSlamParamsFor(kind, particles, config.ekf);
+  // Delayed sampling needs each particle's own association (FastSlam throws otherwise).
+  fastslam.delayed_sampling = config.fastslam.delayed_sampling && !fastslam.known_association;
+  fastslam.window_max_landmarks = config.fastslam.window_max_landmarks;
+  return FastSlamFactory(fastslam, config.scenario.vehicle, config.scenario.sensor);
 }
 
 LandmarkFilterFactory FactoryForFilter(std::string_view name, int particles,

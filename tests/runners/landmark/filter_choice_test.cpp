@@ -55,5 +55,23 @@ TEST(FilterChoice, FactoriesBuildTheNamedFilterWithTheScenariosSettings) {
   EXPECT_THROW(FactoryForFilter("pf", 10, c), InputError);
 }
 
+// The scenario's `fastslam` section reaches FastSLAM, off by default (as FastSlamParams'), and
+// delayed sampling stays off with known association, which it cannot take.
+TEST(FilterChoice, TheScenariosFastSlamSectionSetsDelayedSampling) {
+  ScenarioConfig c = Swslam();
+  const auto params = [&c] {
+    const std::unique_ptr<LandmarkSlamFilter> filter = FactoryForFilter("fastslam2", 3, c)();
+    return dynamic_cast<FastSlam&>(*filter).params();
+  };
+  EXPECT_FALSE(params().delayed_sampling);
+  EXPECT_EQ(params().window_max_landmarks, FastSlamParams{}.window_max_landmarks);
+  c.fastslam.delayed_sampling = true;
+  c.fastslam.window_max_landmarks = 12;
+  EXPECT_TRUE(params().delayed_sampling);
+  EXPECT_EQ(params().window_max_landmarks, 12);
+  c.ekf.association_method = AssociationMethod::kKnown;
+  EXPECT_FALSE(params().delayed_sampling);
+}
+
 }  // namespace
 }  // namespace slamkit

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/io/param_table.hpp"
 #include "slamkit/runners/features/exploration.hpp"
 #include "slamkit/runners/features/feature_exploration.hpp"
 
@@ -19,6 +20,10 @@ struct ExplorationConfig {
   ExplorationParams run;
   FeatureSlamParams slam;  // its odometry noise is set from run's
 };
+
+// The scalar parameters' table (io/param_table.hpp), its lines pointing into `config`; `world`
+// and `start` are Listed lines, read beside it.
+config::ParamTable ExplorationParamTable(ExplorationConfig& config);
 
 // Reads `path`. Throws InputError naming the file, line and key for an unknown key, a wrong type,
 // a value out of range or an unknown choice, and for a missing `world`.

@@ -26,7 +26,9 @@ std::string_view FilterTitle(FilterKind kind);
 FastSlamParams FastSlamParamsFor(FilterKind kind, int particles, const EkfSlamParams& ekf);
 
 // The filter `name` on the scenario's vehicle and sensor: the scenario's EKF, or FastSLAM as
-// FastSlamParamsFor says. Throws InputError for an unknown name and for particles < 1.
+// FastSlamParamsFor says, sampling as config.fastslam says (delayed sampling only with each
+// particle's own association, as on logs). Throws InputError for an unknown name and for
+// particles < 1.
 LandmarkFilterFactory FactoryForFilter(std::string_view name, int particles,
                                        const ScenarioConfig& config);
 LandmarkFilterFactory FactoryForFilter(FilterKind kind, int particles,

@@ -3,7 +3,9 @@
 #include <filesystem>
 
 #include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/io/param_table.hpp"
 #include "slamkit/planning/swslam_planner.hpp"
+#include "slamkit/runners/landmark/fastslam_sampling.hpp"
 #include "slamkit/sim/scenario.hpp"
 
 namespace slamkit {
@@ -25,7 +27,14 @@ struct ScenarioConfig {
   ScenarioParams scenario;
   EkfSlamParams ekf;
   PlannerConfig planner;
+  // How FastSLAM samples when a run uses it (FactoryForFilter; its other params follow ekf).
+  FastSlamSampling fastslam;
 };
+
+// The scenario file's scalar keys (io/param_table.hpp), the lines pointing into `config`: the
+// lists, the landmark file, the initial pose and `ekf.known_association` are Listed lines that
+// LoadScenario reads beside the table.
+config::ParamTable ScenarioParamTable(ScenarioConfig& config);
 
 // Loads a scenario YAML file (configs/*.yaml; the keys are documented in docs/scenario.md).
 // Every key names its unit; angles in configs are in degrees (`_deg`) and converted here.
