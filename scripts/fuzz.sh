@@ -3,13 +3,13 @@
 # Usage: scripts/fuzz.sh READER|all SECONDS   (READER: carmen, carmen_gz, relations, isam,
 #        landmark_csv, scenario, floor_plan, waypoints, occupancy_image, trajectory,
 #        suite_manifest)
-# Needs the check build (scripts/setup.sh check). Starts from the seeds in fuzz/corpus/READER,
-# copied into build/check/corpus-work/READER, which the fuzzer grows (the repository's seeds stay
+# Needs the fuzz build (scripts/setup.sh fuzz). Starts from the seeds in fuzz/corpus/READER,
+# copied into build/fuzz/corpus-work/READER, which the fuzzer grows (the repository's seeds stay
 # as they are; the working corpus is kept between runs so that campaigns build on each other).
 # Prints the executions and the result; exits non-zero on any finding (a crash, an exception
 # other than InputError, a sanitizer report, a leak, an input slower than 2 s, more than 2 GB).
-# The input that failed goes to build/check/artifacts/READER/, the fuzzer's output to
-# build/check/logs/READER.log.
+# The input that failed goes to build/fuzz/artifacts/READER/, the fuzzer's output to
+# build/fuzz/logs/READER.log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,14 +18,14 @@ readers=(carmen carmen_gz relations isam landmark_csv scenario floor_plan waypoi
 usage() { echo "usage: scripts/fuzz.sh READER|all SECONDS (READER: ${readers[*]})" >&2; exit 2; }
 [ $# -eq 2 ] || usage
 [[ $2 =~ ^[1-9][0-9]*$ ]] || usage
-build=build/check
+build=build/fuzz
 
 run() {
   local reader=$1 seconds=$2
   local fuzzer=$build/bin/${reader}_fuzzer
   if [ ! -d "fuzz/corpus/$reader" ]; then usage; fi
   if [ ! -x "$fuzzer" ]; then
-    echo "fuzz: $fuzzer is missing: run scripts/setup.sh check first" >&2
+    echo "fuzz: $fuzzer is missing: run scripts/setup.sh fuzz first" >&2
     return 2
   fi
   local work=$build/corpus-work/$reader artifacts=$build/artifacts/$reader
