@@ -90,20 +90,18 @@ int RunExploreCommand(const ExploreOptions& o) {
   WriteTumTrajectory(dir / "truth.tum", result.run.truth);
   WriteTumTrajectory(dir / "odometry.tum", result.run.odometry);
   WriteLinesCsv(dir / "lines.csv", result.lines);
-  const nlohmann::json metrics = ExploreMetrics(result, config);
-  WriteJson(dir / "metrics.json", metrics);
+  WriteJson(dir / "metrics.json", ExploreMetrics(result, config));
   WriteLineMapFigure(dir / "map.png",
                      LineMapOf(plan, result,
                                fmt::format("explore: {} policy, seed {}",
                                            SelectionKindName(config.slam.selection), config.seed)));
   output.Commit();
+  const ExploreFigures f = ExploreFiguresOf(result);
   fmt::print("{} steps, {:.1f} s simulated ({}): SLAM time {:.4f} s (max {:.6f}), open-loop {:.1f} s\n",
-             metrics["steps"].get<std::size_t>(), result.run.elapsed_s,
-             metrics["final_mode"].get<std::string>(), metrics["slam_time_total_s"].get<double>(),
-             metrics["slam_time_max_s"].get<double>(), result.run.open_loop_time_s);
+             f.steps, f.elapsed_s, ExplorerModeName(f.final_mode), f.slam_time_total_s,
+             f.slam_time_max_s, f.open_loop_time_s);
   fmt::print("mean error {:.3f} m (odometry {:.3f} m), mean pose NEES {:.2f}, {} lines, {} corners\n",
-             metrics["mean_error_m"].get<double>(), metrics["odometry_mean_error_m"].get<double>(),
-             metrics["mean_nees"].get<double>(), result.lines.size(), result.corners.size());
+             f.mean_error_m, f.odometry_mean_error_m, f.mean_nees, f.lines, f.corners);
   fmt::print("wrote {}\n", o.out);
   return 0;
 }

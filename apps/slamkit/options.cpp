@@ -102,8 +102,12 @@ std::string HelpOf(const config::Param& p) {
   return p.unit.empty() ? p.help : fmt::format("{} [{}]", p.help, p.unit);
 }
 
-CLI::Option* AddNumber(CLI::App* cmd, const config::Param& p, double* v) {
+template <typename Real>
+CLI::Option* AddNumber(CLI::App* cmd, const config::Param& p, Real* v) {
   CLI::Option* o = cmd->add_option(p.flag, *v, HelpOf(p))->capture_default_str();
+  if (p.bound == config::Bound::kFinite) {
+    o->check(NumberCheck("finite", [](double) { return true; }));
+  }
   if (p.bound == config::Bound::kPositive) o->check(PositiveNumber());
   if (p.bound == config::Bound::kNonNegative) o->check(NonNegativeNumber());
   if (std::isfinite(p.max)) o->check(CLI::Range(-std::numeric_limits<double>::max(), p.max));
@@ -131,9 +135,7 @@ CLI::Option* AddParamOption(CLI::App* cmd, const config::Param& p) {
     CLI::Option* operator()(double* v) const {
       return p.degrees ? Unsupported() : AddNumber(cmd, p, v);
     }
-    CLI::Option* operator()(float* v) const {
-      return cmd->add_option(p.flag, *v, HelpOf(p))->capture_default_str();
-    }
+    CLI::Option* operator()(float* v) const { return AddNumber(cmd, p, v); }
     CLI::Option* operator()(int* v) const {
       return cmd->add_option(p.flag, *v, HelpOf(p))
           ->capture_default_str()

@@ -15,10 +15,12 @@
 namespace slamkit {
 namespace {
 
-std::vector<double> Field(const std::vector<const CompareRun*>& runs, const char* key) {
+// One figure over the runs.
+template <typename T>
+Spread SpreadOfField(const std::vector<const CompareRun*>& runs, T ExploreFigures::*field) {
   std::vector<double> v;
-  for (const CompareRun* r : runs) v.push_back(r->Get(key));
-  return v;
+  for (const CompareRun* r : runs) v.push_back(static_cast<double>(r->figures.*field));
+  return SpreadOf(v);
 }
 
 // SPEC S1 (NEES): ANEES per step index over the runs that reached it, while at least half did:
@@ -81,22 +83,11 @@ std::vector<std::uint64_t> ExploreCompareParams::DefaultCompareSeeds() {
   return seeds;
 }
 
-Spread SpreadOf(const std::vector<double>& values) {
-  if (values.empty()) return {};
-  const double n = double(values.size());
-  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
-  double ss = 0.0;
-  for (const double v : values) ss += (v - mean) * (v - mean);
-  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-  return {mean, values.size() > 1 ? std::sqrt(ss / (n - 1.0)) : 0.0, *lo, *hi};
-}
-
 CompareRun SummariseCompareRun(const ExploreResult& result, const ExplorationConfig& config) {
   CompareRun run;
   run.policy = config.slam.selection;
   run.seed = config.seed;
-  run.metrics = ExploreMetrics(result, config);
-  run.metrics.erase("params");
+  run.figures = ExploreFiguresOf(result);
   run.nees = result.nees;
   for (const std::optional<double>& a : result.accuracy) {
     if (!a) continue;
@@ -114,22 +105,22 @@ ComparePolicySummary SummarisePolicy(SelectionKind policy, const std::vector<Com
   ComparePolicySummary s;
   s.policy = policy;
   s.runs = static_cast<int>(runs.size());
-  s.slam_time_total_s = SpreadOf(Field(runs, "slam_time_total_s"));
-  const Spread max_step = SpreadOf(Field(runs, "slam_time_max_s"));
+  s.slam_time_total_s = SpreadOfField(runs, &ExploreFigures::slam_time_total_s);
+  const Spread max_step = SpreadOfField(runs, &ExploreFigures::slam_time_max_s);
   s.slam_time_max_mean_s = max_step.mean;
   s.slam_time_max_s = max_step.max;
-  s.open_loop_time_s = SpreadOf(Field(runs, "open_loop_time_s"));
+  s.open_loop_time_s = SpreadOfField(runs, &ExploreFigures::open_loop_time_s);
   Accuracy(runs, &s);
   AneesPerStep(runs, &s);
-  s.mean_error_m = SpreadOf(Field(runs, "mean_error_m"));
-  s.final_error_m = SpreadOf(Field(runs, "final_error_m"));
-  s.odometry_mean_error_m = SpreadOf(Field(runs, "odometry_mean_error_m"));
-  s.odometry_final_error_m = SpreadOf(Field(runs, "odometry_final_error_m"));
-  s.lines = SpreadOf(Field(runs, "lines"));
-  s.corners = SpreadOf(Field(runs, "corners"));
-  s.steps = SpreadOf(Field(runs, "steps"));
-  s.elapsed_s = SpreadOf(Field(runs, "elapsed_s"));
-  s.wall_time_s = SpreadOf(Field(runs, "wall_time_s"));
+  s.mean_error_m = SpreadOfField(runs, &ExploreFigures::mean_error_m);
+  s.final_error_m = SpreadOfField(runs, &ExploreFigures::final_error_m);
+  s.odometry_mean_error_m = SpreadOfField(runs, &ExploreFigures::odometry_mean_error_m);
+  s.odometry_final_error_m = SpreadOfField(runs, &ExploreFigures::odometry_final_error_m);
+  s.lines = SpreadOfField(runs, &ExploreFigures::lines);
+  s.corners = SpreadOfField(runs, &ExploreFigures::corners);
+  s.steps = SpreadOfField(runs, &ExploreFigures::steps);
+  s.elapsed_s = SpreadOfField(runs, &ExploreFigures::elapsed_s);
+  s.wall_time_s = SpreadOfField(runs, &ExploreFigures::wall_time_s);
   return s;
 }
 
@@ -138,7 +129,7 @@ std::vector<CovarianceSavings> CovarianceSavingsOf(const std::vector<CompareRun>
                                                    const std::vector<SelectionKind>& policies) {
   const auto total = [&runs](SelectionKind p, std::uint64_t seed) {
     for (const CompareRun& r : runs) {
-      if (r.policy == p && r.seed == seed) return r.Get("slam_time_total_s");
+      if (r.policy == p && r.seed == seed) return r.figures.slam_time_total_s;
     }
     throw std::logic_error("no run of that policy and seed");
   };
@@ -152,7 +143,7 @@ std::vector<CovarianceSavings> CovarianceSavingsOf(const std::vector<CompareRun>
     for (const CompareRun& r : runs) {
       if (r.policy != other) continue;
       cov.push_back(total(SelectionKind::kCovariance, r.seed));
-      oth.push_back(r.Get("slam_time_total_s"));
+      oth.push_back(r.figures.slam_time_total_s);
       per_seed.push_back(100.0 * (1.0 - cov.back() / oth.back()));
     }
     const Spread s = SpreadOf(per_seed);

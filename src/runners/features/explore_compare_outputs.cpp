@@ -13,7 +13,7 @@ namespace slamkit {
 namespace {
 
 nlohmann::json SpreadJson(const Spread& s) {
-  return {{"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+  return {{"mean", s.mean}, {"sd", s.sd()}, {"min", s.min}, {"max", s.max}};
 }
 
 // JSON null for a missing figure (a policy whose steps never had anything to reduce).
@@ -56,7 +56,7 @@ nlohmann::json SummaryJson(const ComparePolicySummary& s) {
 }
 
 nlohmann::json RunJson(const CompareRun& r) {
-  nlohmann::json j = r.metrics;
+  nlohmann::json j = ExploreFiguresJson(r.figures);
   j["policy"] = SelectionKindName(r.policy);
   j["seed"] = r.seed;
   j["accuracy_mean"] = r.accuracy_steps > 0 ? nlohmann::json(RunAccuracy(r)) : nullptr;
@@ -95,12 +95,12 @@ void WriteCompareCsv(const std::filesystem::path& path, const std::vector<Compar
       os << fmt::format(
           "{},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},"
           "{:.17g},{:.17g},{},{},{},{:.6f}\n",
-          SelectionKindName(r.policy), r.seed, r.Get("steps"), r.Get("elapsed_s"),
-          r.Get("slam_time_total_s"), r.Get("slam_time_max_s"), r.Get("open_loop_time_s"),
+          SelectionKindName(r.policy), r.seed, r.figures.steps, r.figures.elapsed_s,
+          r.figures.slam_time_total_s, r.figures.slam_time_max_s, r.figures.open_loop_time_s,
           std::isnan(accuracy) ? std::string() : fmt::format("{:.17g}", accuracy),
-          r.Get("mean_nees"), r.Get("mean_error_m"), r.Get("final_error_m"),
-          r.Get("odometry_mean_error_m"), r.Get("odometry_final_error_m"), r.Get("lines"),
-          r.Get("corners"), r.metrics.at("final_mode").get<std::string>(), r.Get("wall_time_s"));
+          r.figures.mean_nees, r.figures.mean_error_m, r.figures.final_error_m,
+          r.figures.odometry_mean_error_m, r.figures.odometry_final_error_m, r.figures.lines,
+          r.figures.corners, ExplorerModeName(r.figures.final_mode), r.figures.wall_time_s);
     }
   });
 }
@@ -110,9 +110,9 @@ std::string TableRow(const ComparePolicySummary& s) {
       "| {} | {} | {:.3f} ± {:.3f} ({:.3f}–{:.3f}) | {:.3f} / {:.3f} | {:.1f} ± {:.1f} | "
       "{} / {} | {:.2f} ({:.0f} %) | {:.3f} / {:.3f} | {:.3f} / {:.3f} | {:.1f} | {:.1f} | "
       "{:.0f} | {:.1f} | {:.1f} |\n",
-      SelectionKindName(s.policy), s.runs, s.slam_time_total_s.mean, s.slam_time_total_s.sd,
+      SelectionKindName(s.policy), s.runs, s.slam_time_total_s.mean, s.slam_time_total_s.sd(),
       s.slam_time_total_s.min, s.slam_time_total_s.max, 1e3 * s.slam_time_max_mean_s,
-      1e3 * s.slam_time_max_s, s.open_loop_time_s.mean, s.open_loop_time_s.sd,
+      1e3 * s.slam_time_max_s, s.open_loop_time_s.mean, s.open_loop_time_s.sd(),
       Fixed(s.accuracy_step_mean, 3), Fixed(s.accuracy_run_mean, 3), s.anees_mean,
       100.0 * s.anees_in_band, s.mean_error_m.mean, s.final_error_m.mean,
       s.odometry_mean_error_m.mean, s.odometry_final_error_m.mean, s.lines.mean, s.corners.mean,

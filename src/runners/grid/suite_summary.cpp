@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "slamkit/eval/spread.hpp"
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/writers.hpp"
 
@@ -30,27 +31,17 @@ std::string Cell(double v, const char* format = "{:.4f}") {
   return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "";
 }
 
-struct RunSpread {
-  int count = 0;
-  double mean = kNaN, min = kNaN, max = kNaN;
-};
-
-RunSpread RunSpreadOf(const std::vector<const SuiteRunRecord*>& runs, const std::string& key) {
-  RunSpread s;
-  double sum = 0.0;
+// `key` over the runs that have it (a log without a reference has no ATE).
+Spread RunSpreadOf(const std::vector<const SuiteRunRecord*>& runs, const std::string& key) {
+  std::vector<double> values;
   for (const SuiteRunRecord* r : runs) {
     const double v = Value(*r, key);
-    if (!std::isfinite(v)) continue;
-    s.min = s.count == 0 ? v : std::min(s.min, v);
-    s.max = s.count == 0 ? v : std::max(s.max, v);
-    sum += v;
-    ++s.count;
+    if (std::isfinite(v)) values.push_back(v);
   }
-  if (s.count > 0) s.mean = sum / s.count;
-  return s;
+  return SpreadOf(values);
 }
 
-std::string SpreadCell(const RunSpread& s) {
+std::string SpreadCell(const Spread& s) {
   if (s.count == 0) return "";
   if (s.count == 1) return fmt::format("{:.4f}", s.mean);
   return fmt::format("{:.4f} ({:.4f}–{:.4f})", s.mean, s.min, s.max);
@@ -105,7 +96,7 @@ nlohmann::json SuiteSummaryJson(const std::vector<SuiteRunRecord>& runs) {
                           {"failed", failed[i]}};
     for (const char* key : {"ate_rmse_m", "relations_trans_mean_m", "odometry_ate_rmse_m",
                             "odometry_relations_trans_mean_m", "wall_time_s", "peak_rss_mib"}) {
-      const RunSpread s = RunSpreadOf(logs[i].second, key);
+      const Spread s = RunSpreadOf(logs[i].second, key);
       if (s.count > 0) log[key] = {{"mean", s.mean}, {"min", s.min}, {"max", s.max}};
     }
     out["logs"].push_back(log);

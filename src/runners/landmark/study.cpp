@@ -69,8 +69,8 @@ StudyMethodResult RunMethod(const ScenarioConfig& config, const StudyParams& par
     heading.push_back(s.rmse.heading_rad);
     anees.push_back(s.anees);
   }
-  m.position_rms_m = MeanAndVariance(position);
-  m.heading_rms_rad = MeanAndVariance(heading);
+  m.position_rms_m = SpreadOf(position);
+  m.heading_rms_rad = SpreadOf(heading);
   m.anees_run_median = Median(anees);
   m.mc = std::move(r.mc);
   m.traces = std::move(r.traces);
@@ -79,16 +79,6 @@ StudyMethodResult RunMethod(const ScenarioConfig& config, const StudyParams& par
 }
 
 }  // namespace
-
-MeanVariance MeanAndVariance(const std::vector<double>& values) {
-  MeanVariance out;
-  if (values.empty()) return out;
-  const double n = static_cast<double>(values.size());
-  for (double v : values) out.mean += v / n;
-  if (values.size() < 2) return out;
-  for (double v : values) out.variance += (v - out.mean) * (v - out.mean) / (n - 1.0);
-  return out;
-}
 
 StudyResult RunStudy(const ScenarioConfig& config, const StudyParams& params) {
   if (params.runs < 1) throw InputError("study: runs must be at least 1");

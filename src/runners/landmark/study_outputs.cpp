@@ -44,7 +44,7 @@ void WriteErrorTableCsv(const std::filesystem::path& path, const StudyResult& re
     out << (position ? "method,runs,mean_m,variance_m2" : "method,runs,mean_rad,variance_rad2")
         << ",paper_mean,paper_variance\n";
     for (const StudyMethodResult& m : result.methods) {
-      const MeanVariance& ours = position ? m.position_rms_m : m.heading_rms_rad;
+      const Spread& ours = position ? m.position_rms_m : m.heading_rms_rad;
       const PaperMethodFigures& p = Seed001FiguresOf(m.key);
       const MeanVariance& paper = position ? p.position_m : p.heading_rad;
       out << fmt::format("{},{},{:.17g},{:.17g},{},{}\n", m.key, m.mc.run_count, ours.mean,

@@ -39,7 +39,7 @@ std::string ErrorTable(const StudyResult& result, bool position) {
                  "| Method | Mean [rad] | paper | Variance [rad²] | paper |\n";
   md += "|---|---:|---:|---:|---:|\n";
   for (const StudyMethodResult& m : result.methods) {
-    const MeanVariance& ours = position ? m.position_rms_m : m.heading_rms_rad;
+    const Spread& ours = position ? m.position_rms_m : m.heading_rms_rad;
     const PaperMethodFigures& p = Seed001FiguresOf(m.key);
     const MeanVariance& paper = position ? p.position_m : p.heading_rad;
     md += fmt::format("| {} | {:.4f} | {:.4f} | {:.4g} | {:.4g} |\n", m.title, ours.mean,

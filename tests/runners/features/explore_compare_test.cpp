@@ -68,8 +68,8 @@ TEST_F(ExploreCompare, TheSummaryIsTheRunsAggregated) {
       const CompareRun& run = r.runs[3 * p + k];
       EXPECT_EQ(run.policy, s.policy);
       EXPECT_EQ(run.seed, k + 1);
-      total += run.Get("slam_time_total_s");
-      max_step = std::max(max_step, run.Get("slam_time_max_s"));
+      total += run.figures.slam_time_total_s;
+      max_step = std::max(max_step, run.figures.slam_time_max_s);
       accuracy += run.accuracy_sum;
       accuracy_steps += run.accuracy_steps;
     }
@@ -82,7 +82,7 @@ TEST_F(ExploreCompare, TheSummaryIsTheRunsAggregated) {
         (r.runs[3 * p].nees[0] + r.runs[3 * p + 1].nees[0] + r.runs[3 * p + 2].nees[0]) / 3.0;
     EXPECT_NEAR(s.anees[0], first, 1e-12);
     // The kept first-seed run is the run the summary counted.
-    EXPECT_EQ(r.first_seed[p].run.slam_time_s.size(), r.runs[3 * p].Get("steps"));
+    EXPECT_EQ(static_cast<int>(r.first_seed[p].run.slam_time_s.size()), r.runs[3 * p].figures.steps);
   }
   // Every update applied: the whole reduction kept. The covariance policy keeps at most k_max.
   EXPECT_NEAR(*r.policies[0].accuracy_step_mean, 1.0, 1e-9);

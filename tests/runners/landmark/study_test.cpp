@@ -94,14 +94,6 @@ TEST(Study, RouteMethodsShareSectionsAndSwslamSeesLandmarksMoreOften) {
   }
 }
 
-TEST(Study, MeanAndVarianceAreOverRunsWithTheUnbiasedVariance) {
-  const MeanVariance mv = MeanAndVariance({1.0, 2.0, 3.0, 6.0});
-  EXPECT_DOUBLE_EQ(mv.mean, 3.0);
-  EXPECT_DOUBLE_EQ(mv.variance, (4.0 + 1.0 + 0.0 + 9.0) / 3.0);
-  EXPECT_EQ(MeanAndVariance({2.5}).variance, 0.0);
-  EXPECT_EQ(MeanAndVariance({}).mean, 0.0);
-}
-
 TEST(Study, BadParametersAreInputErrors) {
   StudyParams p = Small();
   p.runs = 0;

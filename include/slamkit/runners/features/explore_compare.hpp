@@ -7,9 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "slamkit/eval/consistency.hpp"
+#include "slamkit/eval/spread.hpp"
 #include "slamkit/runners/features/explore_run.hpp"
 
 namespace slamkit {
@@ -26,26 +25,16 @@ struct ExploreCompareParams {
   static std::vector<std::uint64_t> DefaultCompareSeeds();  // 1 … 20
 };
 
-// What the summary keeps of one run (a policy on a seed): ExploreMetrics' figures and the
-// per-step NEES and accuracy sums, not the map.
+// What the summary keeps of one run (a policy on a seed): its figures and the per-step NEES and
+// accuracy sums, not the map.
 struct CompareRun {
   SelectionKind policy = SelectionKind::kCovariance;
   std::uint64_t seed = 0;
-  nlohmann::json metrics;      // ExploreMetrics without `params`
+  ExploreFigures figures;
   std::vector<double> nees;    // per step from step 1, as ExploreResult::nees
   double accuracy_sum = 0.0;   // Σ of the per-step accuracy ratios (Eq. 24) over the steps
   int accuracy_steps = 0;      // that have one
-  double Get(const char* key) const { return metrics.at(key).get<double>(); }
 };
-
-// Mean, sample standard deviation (0 for one value), minimum and maximum.
-struct Spread {
-  double mean = 0.0;
-  double sd = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-};
-Spread SpreadOf(const std::vector<double>& values);
 
 // One policy over the seeds.
 struct ComparePolicySummary {

@@ -8,6 +8,7 @@
 
 #include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/consistency.hpp"
 #include "slamkit/filters/features/feature_ekf_slam.hpp"
 #include "slamkit/models/line_sensor.hpp"
 #include "slamkit/runners/features/exploration_config.hpp"
@@ -49,10 +50,32 @@ struct ExploreResult {
 // SPEC S1's active loop with the line-and-corner EKF on `plan`, as `config` says.
 ExploreResult RunFeatureExploration(const FloorPlan& plan, const ExplorationConfig& config);
 
-// metrics.json of an exploration: the effective parameters (`params`), the steps, simulated and
-// SLAM times (total, per-step maximum, open-loop), the mean pose NEES with its 95 % band for one
-// run's steps, mean and final position errors of the estimate and of the odometry, the map's
-// line and corner counts, and the explorer's final mode.
+// The figures of one exploration run: steps, simulated and SLAM times (total, per-step maximum,
+// open-loop), the mean pose NEES with its 95 % band for one run's steps, mean and final position
+// errors of the estimate and of the odometry, the map's line and corner counts, and the
+// explorer's final mode.
+struct ExploreFigures {
+  int steps = 0;
+  double elapsed_s = 0.0;
+  double slam_time_total_s = 0.0;
+  double slam_time_max_s = 0.0;
+  double open_loop_time_s = 0.0;
+  double mean_nees = 0.0;
+  ChiSquareBand nees_band;
+  double mean_error_m = 0.0;
+  double final_error_m = 0.0;
+  double odometry_mean_error_m = 0.0;
+  double odometry_final_error_m = 0.0;
+  int lines = 0;
+  int corners = 0;
+  ExplorerMode final_mode = ExplorerMode::kTurning;
+  double wall_time_s = 0.0;
+};
+ExploreFigures ExploreFiguresOf(const ExploreResult& result);
+const char* ExplorerModeName(ExplorerMode mode);
+nlohmann::json ExploreFiguresJson(const ExploreFigures& figures);
+
+// metrics.json of an exploration: the effective parameters (`params`) and ExploreFigures.
 nlohmann::json ExploreMetrics(const ExploreResult& result, const ExplorationConfig& config);
 
 }  // namespace slamkit

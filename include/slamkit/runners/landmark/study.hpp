@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "slamkit/eval/spread.hpp"
 #include "slamkit/runners/landmark/active_monte_carlo.hpp"
 #include "slamkit/runners/landmark/filter_choice.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"
@@ -31,13 +32,12 @@ struct StudyParams {
   std::function<void(int, int, int)> progress;
 };
 
-// Mean over runs of each run's RMS error, and its variance over runs (unbiased, n - 1; 0 for
-// one run): seed 001 Tables 4 and 5.
+// A figure as seed 001's Tables 4 and 5 give it: the mean over runs of each run's RMS error and
+// its variance over runs.
 struct MeanVariance {
   double mean = 0.0;
   double variance = 0.0;
 };
-MeanVariance MeanAndVariance(const std::vector<double>& values);
 
 struct StudyMethodResult {
   std::string key;    // "ekf_slam", "fastslam", "swslam": file and JSON names
@@ -48,8 +48,8 @@ struct StudyMethodResult {
   MonteCarloResult mc;
   std::vector<ActiveRunTrace> traces;  // one per run (period states dropped)
   std::vector<SectionMean> sections;   // seed 001 Tables 1-3, one entry per section
-  MeanVariance position_rms_m;         // Table 4
-  MeanVariance heading_rms_rad;        // Table 5
+  Spread position_rms_m;               // Table 4: each run's RMS over the runs
+  Spread heading_rms_rad;              // Table 5
   // The median over runs of each run's mean NEES: one diverging run (a wrong association in a
   // dense cluster) dominates the ANEES, not this.
   double anees_run_median = 0.0;
