@@ -2,7 +2,7 @@
 # Runs a libFuzzer campaign on one reader's harness (fuzz/), or on each in turn with `all`.
 # Usage: scripts/fuzz.sh READER|all SECONDS   (READER: carmen, carmen_gz, relations, isam,
 #        landmark_csv, scenario, floor_plan, waypoints, occupancy_image, trajectory,
-#        suite_manifest)
+#        suite_manifest, mrclam)
 # Needs the fuzz build (scripts/setup.sh fuzz). Starts from the seeds in fuzz/corpus/READER,
 # copied into build/fuzz/corpus-work/READER, which the fuzzer grows (the repository's seeds stay
 # as they are; the working corpus is kept between runs so that campaigns build on each other).
@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 readers=(carmen carmen_gz relations isam landmark_csv scenario floor_plan waypoints
-         occupancy_image trajectory suite_manifest)
+         occupancy_image trajectory suite_manifest mrclam)
 usage() { echo "usage: scripts/fuzz.sh READER|all SECONDS (READER: ${readers[*]})" >&2; exit 2; }
 [ $# -eq 2 ] || usage
 [[ $2 =~ ^[1-9][0-9]*$ ]] || usage

@@ -15,5 +15,6 @@ void RegisterSuite(CLI::App& app, int& exit_code);
 void RegisterExplore(CLI::App& app, int& exit_code);
 void RegisterFeatures(CLI::App& app, int& exit_code);
 void RegisterStudy(CLI::App& app, int& exit_code);
+void RegisterCoop(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -135,9 +135,10 @@ std::vector<AssociationDecision> KnownAssociation::Associate(const AssociationCo
       d.kind = AssociationDecision::Kind::kNew;
       d.distance_chi2 = std::numeric_limits<double>::infinity();
     } else {
-      d.kind = AssociationDecision::Kind::kMatched;
-      d.landmark = landmark;
       d.distance_chi2 = scan.Distance(i, landmark);
+      const bool inlier = !(d.distance_chi2 > gate_chi2_);  // NaN: kept, as before the gate
+      d.kind = inlier ? AssociationDecision::Kind::kMatched : AssociationDecision::Kind::kDropped;
+      d.landmark = inlier ? landmark : -1;
     }
   }
   return decisions;

@@ -111,8 +111,7 @@ void ReadBesideTable(const YAML::Node& yaml, const std::filesystem::path& path,
     return config::TableSection(yaml, path.string(), table, section);
   };
   ScenarioParams& p = c->scenario;
-  CheckUniform(at("world.uniform"), p.world.uniform);
-  ReadWorldLists(at("world"), path.parent_path(), &p.world);
+  ReadScenarioWorld(yaml, path, table, &p.world);
   CheckMotion(at("vehicle"), at("controller"), &p);
   const Section root = at("");
   ReadWaypoints(at("route"), root.Has("route"), &p.route);
@@ -126,6 +125,13 @@ void ReadBesideTable(const YAML::Node& yaml, const std::filesystem::path& path,
 }
 
 }  // namespace
+
+void ReadScenarioWorld(const YAML::Node& yaml, const std::filesystem::path& path,
+                       const config::ParamTable& table, WorldSpec* world) {
+  CheckUniform(config::TableSection(yaml, path.string(), table, "world.uniform"), world->uniform);
+  ReadWorldLists(config::TableSection(yaml, path.string(), table, "world"), path.parent_path(),
+                 world);
+}
 
 ScenarioConfig LoadScenario(const std::filesystem::path& path) {
   const YAML::Node yaml = config::LoadYamlFile(path);

@@ -17,22 +17,6 @@ using config::ParamTable;
 constexpr Bound kScenarioNonNeg = Bound::kNonNegative;
 constexpr Bound kScenarioPos = Bound::kPositive;
 
-void AddScenarioWorld(WorldSpec& w, ParamTable& t) {
-  const ParamTable lines = {
-      config::Choice("world", "kind", &w.kind, {"uniform", "clusters", "csv"},
-                     "where the landmarks come from"),
-      config::Seed("world", "seed", &w.seed, "random seed of the landmarks"),
-      config::Listed("world", "clusters", "kind clusters: [{center_m, sigma_m, count, ...}]"),
-      config::Listed("world", "landmarks_csv", "kind csv: the landmark file (id,x_m,y_m)"),
-      config::Point("world.uniform", "min_xy_m", &w.uniform.min_xy_m, "the area's low corner"),
-      config::Point("world.uniform", "max_xy_m", &w.uniform.max_xy_m, "the area's high corner"),
-      Integer("world.uniform", "count", &w.uniform.count, 0, "landmarks (0: by density)"),
-      Number("world.uniform", "density_per_m2", &w.uniform.density_per_m2, kScenarioNonNeg, "1/m^2",
-             "landmarks per square metre"),
-  };
-  t.insert(t.end(), lines.begin(), lines.end());
-}
-
 void AddScenarioVehicle(VehicleParams& v, ControllerParams& c, ParamTable& t) {
   const std::string s = "vehicle";
   const ParamTable lines = {
@@ -82,7 +66,42 @@ void AddScenarioRoute(ScenarioParams& p, ParamTable& t) {
   t.insert(t.end(), lines.begin(), lines.end());
 }
 
-void AddScenarioEkf(EkfSlamParams& e, ParamTable& t) {
+void AddScenarioPlanner(PlannerConfig& p, ParamTable& t) {
+  const std::string s = "planner";
+  SwslamPlannerParams& w = p.swslam;
+  const ParamTable lines = {
+      config::Choice(s, "kind", &p.kind, {"route", "swslam"}, "who picks the next waypoint"),
+      Integer(s, "trigger_periods", &w.trigger_periods, 2, "area-of-interest trigger"),
+      Integer(s, "k", &w.kmeans.k, 1, "K-means clusters"),
+      Integer(s, "kmeans_max_iterations", &w.kmeans.max_iterations, 1, "K-means iterations"),
+      Integer(s, "max_detour_periods", &w.max_detour_periods, 1, "a detour's longest"),
+      Integer(s, "min_cluster_landmarks", &w.min_cluster_landmarks, 1,
+              "fewest landmarks of a cluster worth a detour"),
+      Number(s, "revisit_radius_m", &w.revisit_radius_m, kScenarioNonNeg, "m",
+             "a cluster within this of a visited one is not revisited"),
+  };
+  t.insert(t.end(), lines.begin(), lines.end());
+}
+
+}  // namespace
+
+void AddScenarioWorldLines(WorldSpec& w, ParamTable& t) {
+  const ParamTable lines = {
+      config::Choice("world", "kind", &w.kind, {"uniform", "clusters", "csv"},
+                     "where the landmarks come from"),
+      config::Seed("world", "seed", &w.seed, "random seed of the landmarks"),
+      config::Listed("world", "clusters", "kind clusters: [{center_m, sigma_m, count, ...}]"),
+      config::Listed("world", "landmarks_csv", "kind csv: the landmark file (id,x_m,y_m)"),
+      config::Point("world.uniform", "min_xy_m", &w.uniform.min_xy_m, "the area's low corner"),
+      config::Point("world.uniform", "max_xy_m", &w.uniform.max_xy_m, "the area's high corner"),
+      Integer("world.uniform", "count", &w.uniform.count, 0, "landmarks (0: by density)"),
+      Number("world.uniform", "density_per_m2", &w.uniform.density_per_m2, kScenarioNonNeg, "1/m^2",
+             "landmarks per square metre"),
+  };
+  t.insert(t.end(), lines.begin(), lines.end());
+}
+
+void AddScenarioEkfLines(EkfSlamParams& e, ParamTable& t) {
   const std::string s = "ekf";
   const ParamTable lines = {
       config::Listed(s, "known_association", "the same as association: known (or nn)"),
@@ -106,25 +125,6 @@ void AddScenarioEkf(EkfSlamParams& e, ParamTable& t) {
   t.insert(t.end(), lines.begin(), lines.end());
 }
 
-void AddScenarioPlanner(PlannerConfig& p, ParamTable& t) {
-  const std::string s = "planner";
-  SwslamPlannerParams& w = p.swslam;
-  const ParamTable lines = {
-      config::Choice(s, "kind", &p.kind, {"route", "swslam"}, "who picks the next waypoint"),
-      Integer(s, "trigger_periods", &w.trigger_periods, 2, "area-of-interest trigger"),
-      Integer(s, "k", &w.kmeans.k, 1, "K-means clusters"),
-      Integer(s, "kmeans_max_iterations", &w.kmeans.max_iterations, 1, "K-means iterations"),
-      Integer(s, "max_detour_periods", &w.max_detour_periods, 1, "a detour's longest"),
-      Integer(s, "min_cluster_landmarks", &w.min_cluster_landmarks, 1,
-              "fewest landmarks of a cluster worth a detour"),
-      Number(s, "revisit_radius_m", &w.revisit_radius_m, kScenarioNonNeg, "m",
-             "a cluster within this of a visited one is not revisited"),
-  };
-  t.insert(t.end(), lines.begin(), lines.end());
-}
-
-}  // namespace
-
 config::ParamTable ScenarioParamTable(ScenarioConfig& config) {
   ScenarioParams& p = config.scenario;
   ParamTable t = {
@@ -132,10 +132,10 @@ config::ParamTable ScenarioParamTable(ScenarioConfig& config) {
       Number("", "dt_s", &p.dt_s, kScenarioPos, "s", "simulation step"),
       Integer("", "max_steps", &p.max_steps, 1, "stop after this many steps"),
   };
-  AddScenarioWorld(p.world, t);
+  AddScenarioWorldLines(p.world, t);
   AddScenarioVehicle(p.vehicle, p.controller, t);
   AddScenarioRoute(p, t);
-  AddScenarioEkf(config.ekf, t);
+  AddScenarioEkfLines(config.ekf, t);
   AddScenarioPlanner(config.planner, t);
   AddDelayedSamplingLines("fastslam", &config.fastslam.delayed_sampling,
                           &config.fastslam.window_max_landmarks, &t);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -135,9 +136,16 @@ class GlobalNearestNeighbourAssociator final : public Associator {
 
 // The observation's id names its landmark (simulator truth, a data set's association): the
 // landmark created from that id, or a new one.
+// A sighting farther than `gate_chi2` from its known landmark is dropped as an outlier (a
+// misread or a reflection in a real log); the default, infinity, trusts every id.
 class KnownAssociation final : public Associator {
  public:
+  explicit KnownAssociation(double gate_chi2 = std::numeric_limits<double>::infinity())
+      : gate_chi2_(gate_chi2) {}
   std::vector<AssociationDecision> Associate(const AssociationContext& scan) override;
+
+ private:
+  double gate_chi2_;
 };
 
 }  // namespace slamkit

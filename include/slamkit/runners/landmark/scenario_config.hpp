@@ -36,6 +36,14 @@ struct ScenarioConfig {
 // LoadScenario reads beside the table.
 config::ParamTable ScenarioParamTable(ScenarioConfig& config);
 
+// The `world` and `ekf` sections' lines, for the other simulated configs (the cooperative one).
+void AddScenarioWorldLines(WorldSpec& w, config::ParamTable& t);
+void AddScenarioEkfLines(EkfSlamParams& e, config::ParamTable& t);
+// What the `world` section holds beside its lines (clusters, the landmark file, relative to
+// `path`), with its checks; after ReadParams with a table holding AddScenarioWorldLines.
+void ReadScenarioWorld(const YAML::Node& yaml, const std::filesystem::path& path,
+                       const config::ParamTable& table, WorldSpec* world);
+
 // Loads a scenario YAML file (configs/*.yaml; the keys are documented in docs/scenario.md).
 // Every key names its unit; angles in configs are in degrees (`_deg`) and converted here.
 // Throws InputError naming the file, the key (with its line) and the reason for an unknown key,

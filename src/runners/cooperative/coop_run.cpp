@@ -1,0 +1,299 @@
+// SPEC S3: one estimator of a cooperative run over a fleet's recording.
+#include "slamkit/runners/cooperative/coop_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <unordered_map>
+
+#include <Eigen/Eigenvalues>
+
+#include "slamkit/core/angle.hpp"
+#include "slamkit/eval/alignment.hpp"
+#include "slamkit/eval/errors.hpp"
+
+namespace slamkit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// One filter and where each of its vehicles' pose blocks is in time.
+struct Estimator {
+  std::unique_ptr<CooperativeEkfSlam> filter;
+  std::vector<double> time_s;
+  std::vector<Control> control;  // the latest control of each vehicle (empty: none yet)
+  std::vector<LandmarkId> landmark_truth;  // by landmark index: its creating sighting's truth
+  std::vector<double> last_record_s;
+};
+
+CooperativeMode FilterModeOf(CoopMode mode) {
+  switch (mode) {
+    case CoopMode::kMono: return CooperativeMode::kMono;
+    case CoopMode::kExtended: return CooperativeMode::kExtended;
+    default: return CooperativeMode::kExact;
+  }
+}
+
+Estimator MakeEstimator(const FleetLog& log, CoopMode mode, int self, const CoopFilterParams& p) {
+  CooperativeEkfSlamParams fp = p.filter;
+  fp.mode = FilterModeOf(mode);
+  if (p.known_association) fp.ekf.association_method = AssociationMethod::kKnown;
+  Estimator e;
+  std::unique_ptr<Associator> associator =
+      p.known_association ? std::make_unique<KnownAssociation>(p.known_gate_chi2)
+                          : MakeAssociator(fp.ekf);
+  e.filter = std::make_unique<CooperativeEkfSlam>(fp, log.vehicles, self,
+                                                  std::make_unique<UnicycleModel>(p.motion),
+                                                  std::make_unique<RangeBearingModel>(p.sensor),
+                                                  std::move(associator));
+  e.filter->Reset(log.start_poses);
+  const double t0 = log.events.empty() ? 0.0 : log.events.front().t_s;
+  e.time_s.assign(log.vehicles, t0);
+  e.control.assign(log.vehicles, Control());
+  e.last_record_s.assign(log.vehicles, -1e300);
+  return e;
+}
+
+ControlCovariance NoiseFor(const CoopFilterParams& p, const Control& u, double dt_s) {
+  if (!p.control_noise_density) return UnicycleModel(p.motion).Noise(u, dt_s);
+  ControlCovariance Q = ControlCovariance::Zero(2, 2);
+  Q(0, 0) = p.control_noise_density->x() / dt_s;
+  Q(1, 1) = p.control_noise_density->y() / dt_s;
+  return Q;
+}
+
+// Moves vehicle v's block to time t with its latest control (none yet: it stands still).
+void Advance(Estimator& e, int v, double t, const CoopFilterParams& p) {
+  if (!e.filter->Tracks(v) || t <= e.time_s[v]) return;
+  const double dt = t - e.time_s[v];
+  if (e.control[v].size() > 0) {
+    const ControlCovariance Q = NoiseFor(p, e.control[v], dt);
+    e.filter->Predict(v, e.control[v], dt, &Q);
+  }
+  e.time_s[v] = t;
+}
+
+// The true pose at t: the latest sample at or before it (the first when all are later).
+Pose2 TruthAt(const Trajectory& path, double t) {
+  const auto after = std::upper_bound(path.begin(), path.end(), t,
+                                      [](double time, const StampedPose& s) { return time < s.t_s; });
+  return after == path.begin() ? path.front().pose : std::prev(after)->pose;
+}
+
+void Record(CoopVehicleTrace& trace, double t, const Pose2& estimate, const Eigen::Matrix3d& cov,
+            const Trajectory& truth) {
+  trace.estimate.push_back({t, estimate});
+  trace.covariance.push_back(cov);
+  trace.truth.push_back({t, TruthAt(truth, t)});
+}
+
+LandmarkId TrueId(const FleetLog& log, const std::vector<LandmarkId>& true_ids, int event) {
+  return true_ids.empty() ? log.events[event].landmark : true_ids[event];
+}
+
+// The scan made of the sightings from events[begin] on that share its vehicle and time.
+FleetScan ScanAt(const FleetLog& log, const std::vector<int>& events, std::size_t begin,
+                 std::size_t* end, const std::vector<LandmarkId>& true_ids,
+                 const CoopFilterParams& p, std::vector<int>* landmark_events) {
+  const FleetEvent& first = log.events[events[begin]];
+  FleetScan scan;
+  scan.vehicle = first.vehicle;
+  scan.t_s = first.t_s;
+  const RangeBearingModel sensor(p.sensor), vehicle_sensor(p.vehicle_sensor);
+  std::size_t i = begin;
+  for (; i < events.size(); ++i) {
+    const FleetEvent& e = log.events[events[i]];
+    if (e.kind == FleetEvent::Kind::kControl || e.vehicle != first.vehicle || e.t_s != first.t_s) {
+      break;
+    }
+    if (e.kind == FleetEvent::Kind::kVehicleSighting) {
+      scan.vehicles.push_back({e.target, e.value, vehicle_sensor.NoiseCovariance()});
+      continue;
+    }
+    const LandmarkId id = p.known_association ? TrueId(log, true_ids, events[i]) : kNoLandmark;
+    scan.landmarks.push_back({e.value, sensor.NoiseCovariance(), id});
+    landmark_events->push_back(events[i]);
+  }
+  *end = i;
+  return scan;
+}
+
+void Summarise(CoopVehicleTrace& trace, const LandmarkWorld& world,
+               const std::vector<LandmarkId>& landmark_truth) {
+  std::vector<Eigen::Vector3d> errors;
+  double nees_sum = 0.0;
+  int defined = 0;
+  for (std::size_t k = 0; k < trace.estimate.size(); ++k) {
+    Eigen::Vector3d e = trace.estimate[k].pose.vector() - trace.truth[k].pose.vector();
+    e[2] = WrapAngle(e[2]);
+    errors.push_back(e);
+    const Eigen::Matrix3d& C = trace.covariance[k];
+    // A pose known exactly in some direction (the known start, dead reckoning) has no NEES.
+    const Eigen::Vector3d eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues();
+    const bool definite = eigenvalues.minCoeff() > 1e-12 * eigenvalues.maxCoeff();
+    trace.nees.push_back(definite ? Nees(e, C) : kNaN);
+    if (definite) {
+      nees_sum += trace.nees.back();
+      ++defined;
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(C.topLeftCorner<2, 2>());
+    trace.position_cov_norm.push_back(eig.eigenvalues().maxCoeff());
+  }
+  const PoseRmse rmse = ComputePoseRmse(errors);
+  trace.position_rmse_m = rmse.position_m;
+  trace.heading_rmse_rad = rmse.heading_rad;
+  trace.mean_nees = defined > 0 ? nees_sum / defined : kNaN;
+  std::unordered_map<LandmarkId, Eigen::Vector2d> truth;
+  for (const Landmark& l : world.landmarks) truth.emplace(l.id, l.position_m);
+  std::vector<Eigen::Vector2d> from, to;
+  for (std::size_t i = 0; i < trace.map.landmarks.size() && i < landmark_truth.size(); ++i) {
+    const auto it = truth.find(landmark_truth[i]);
+    if (it == truth.end()) continue;
+    from.push_back(trace.map.landmarks[i].position_m);
+    to.push_back(it->second);
+  }
+  if (from.size() >= 2) trace.map_rmse_m = AlignPoints(from, to).rmse_m;
+}
+
+// Each vehicle's controls integrated from its start pose.
+CoopModeResult DeadReckoning(const FleetLog& log, const FleetTruth& truth,
+                             const CoopFilterParams& p) {
+  CoopModeResult out;
+  out.mode = CoopMode::kDeadReckoning;
+  out.vehicles.resize(log.vehicles);
+  const UnicycleModel model(p.motion);
+  std::vector<Pose2> pose = log.start_poses;
+  std::vector<double> last(log.vehicles, -1e300);
+  for (const FleetEvent& e : log.events) {
+    if (e.kind != FleetEvent::Kind::kControl) continue;
+    CoopVehicleTrace& trace = out.vehicles[e.vehicle];
+    if (e.t_s - last[e.vehicle] >= p.record_period_s) {
+      Record(trace, e.t_s, pose[e.vehicle], Eigen::Matrix3d::Zero(), truth.paths[e.vehicle]);
+      last[e.vehicle] = e.t_s;
+    }
+    Control u(2);
+    u << e.value.x(), e.value.y();
+    pose[e.vehicle] = model.Move(pose[e.vehicle], u, e.dt_s);
+  }
+  for (CoopVehicleTrace& trace : out.vehicles) Summarise(trace, truth.world, {});
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+// Runs `e` over `events` (indices into log.events, in order), recording the vehicles `recorded`.
+void Process(const FleetLog& log, const FleetTruth& truth, const std::vector<LandmarkId>& true_ids,
+             const std::vector<int>& events, const std::vector<char>& recorded,
+             const CoopFilterParams& p, Estimator& e, CoopModeResult* out, double* update_s) {
+  for (std::size_t j = 0; j < events.size();) {
+    const FleetEvent& ev = log.events[events[j]];
+    if (ev.kind == FleetEvent::Kind::kControl) {
+      const int v = ev.vehicle;
+      Advance(e, v, ev.t_s, p);
+      if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s) {
+        Record(out->vehicles[v], ev.t_s, e.filter->PoseOf(v), e.filter->PoseCovarianceOf(v),
+               truth.paths[v]);
+        e.last_record_s[v] = ev.t_s;
+      }
+      e.control[v] = Control(2);
+      e.control[v] << ev.value.x(), ev.value.y();
+      ++j;
+      continue;
+    }
+    std::vector<int> landmark_events;
+    std::size_t end = j;
+    const FleetScan scan = ScanAt(log, events, j, &end, true_ids, p, &landmark_events);
+    j = end;
+    for (int v = 0; v < log.vehicles; ++v) Advance(e, v, scan.t_s, p);
+    const auto start = Clock::now();
+    const std::vector<AssociationDecision> decisions = e.filter->Update(scan);
+    *update_s += std::chrono::duration<double>(Clock::now() - start).count();
+    ++out->scans;
+    for (std::size_t k = 0; k < decisions.size(); ++k) {
+      if (decisions[k].kind != AssociationDecision::Kind::kNew) continue;
+      const auto l = static_cast<std::size_t>(decisions[k].landmark);
+      if (e.landmark_truth.size() <= l) e.landmark_truth.resize(l + 1, kNoLandmark);
+      e.landmark_truth[l] = TrueId(log, true_ids, landmark_events[k]);
+    }
+  }
+}
+
+void AddCounts(const CooperativeEkfSlam::Counts& c, CooperativeEkfSlam::Counts* sum) {
+  sum->vehicle_updates += c.vehicle_updates;
+  sum->vehicle_gated += c.vehicle_gated;
+  sum->extended += c.extended;
+}
+
+}  // namespace
+
+std::string_view CoopModeName(CoopMode mode) {
+  switch (mode) {
+    case CoopMode::kDeadReckoning: return "dead-reckoning";
+    case CoopMode::kMono: return "mono";
+    case CoopMode::kExtended: return "eo";
+    case CoopMode::kExact: return "eo-exact";
+    case CoopMode::kCentral: return "central";
+  }
+  return "unknown";
+}
+
+std::optional<CoopMode> CoopModeFromName(std::string_view name) {
+  for (const CoopMode m : {CoopMode::kDeadReckoning, CoopMode::kMono, CoopMode::kExtended,
+                           CoopMode::kExact, CoopMode::kCentral}) {
+    if (CoopModeName(m) == name) return m;
+  }
+  return std::nullopt;
+}
+
+CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
+                           const std::vector<LandmarkId>& true_ids, CoopMode mode,
+                           const CoopFilterParams& params, std::uint64_t message_seed) {
+  if (mode == CoopMode::kDeadReckoning) return DeadReckoning(log, truth, params);
+  CoopModeResult out;
+  out.mode = mode;
+  out.vehicles.resize(log.vehicles);
+  double update_s = 0.0;
+  const int filters = mode == CoopMode::kCentral ? 1 : log.vehicles;
+  for (int f = 0; f < filters; ++f) {
+    const int self = mode == CoopMode::kCentral ? -1 : f;
+    Estimator e = MakeEstimator(log, mode, self, params);
+    std::vector<int> events;
+    if (self < 0) {
+      events.resize(log.events.size());
+      for (std::size_t i = 0; i < events.size(); ++i) events[i] = static_cast<int>(i);
+    } else {
+      Rng rng(message_seed + static_cast<std::uint64_t>(self));
+      events = DeliveredEvents(log, self, params.messages, rng);
+    }
+    std::vector<char> recorded(log.vehicles, self < 0 ? 1 : 0);
+    if (self >= 0) recorded[self] = 1;
+    Process(log, truth, true_ids, events, recorded, params, e, &out, &update_s);
+    e.filter->CheckOutputHealth();
+    AddCounts(e.filter->counts(), &out.counts);
+    const LandmarkMap map = e.filter->Map();
+    for (int v = 0; v < log.vehicles; ++v) {
+      if (!recorded[v]) continue;
+      out.vehicles[v].map = map;
+      Summarise(out.vehicles[v], truth.world, e.landmark_truth);
+    }
+  }
+  out.update_time_mean_s = out.scans > 0 ? update_s / double(out.scans) : 0.0;
+  return out;
+}
+
+std::vector<double> ImprovementRatio(const CoopVehicleTrace& mono, const CoopVehicleTrace& other) {
+  std::vector<double> ir;
+  const std::size_t n = std::min(mono.position_cov_norm.size(), other.position_cov_norm.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const double m = mono.position_cov_norm[k];
+    ir.push_back(m > 0.0 ? 100.0 * (m - other.position_cov_norm[k]) / m : 0.0);
+  }
+  return ir;
+}
+
+}  // namespace slamkit
