@@ -5,7 +5,8 @@
 # on paths relative to the checkout, so a second clone reuses them).
 #   release  GCC, -O3: the library, the `slamkit` program, the tests and the benchmarks.
 #   asan     GCC with AddressSanitizer and UndefinedBehaviorSanitizer at -O1 (asserts and
-#            Eigen's index checks on): the tests and the program they run.
+#            Eigen's index checks on): the tests not labelled `slow` (test.sh runs those in
+#            Release only) and the program they run.
 #   fuzz     clang with ASan and UBSan: the libraries and the libFuzzer harnesses of the input
 #            readers (fuzz/, scripts/fuzz.sh).
 set -euo pipefail
@@ -40,7 +41,7 @@ case "$flavour" in
   # build: under clang three seeded tests draw other noise from the same seed (stop 34's note).
   asan)
     args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_SANITIZE=ON
-          -DSLAMKIT_BUILD_BENCH=OFF) ;;
+          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF) ;;
   # The libFuzzer harnesses (fuzz/, run by scripts/fuzz.sh): clang with ASan and UBSan, only the
   # libraries and the harnesses. RelWithDebInfo with the flags given here rather than its default
   # ones: -O2 runs several times more inputs per second than Debug's -O0 does under ASan, and

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 
 #include <Eigen/Eigenvalues>
@@ -76,18 +77,31 @@ void Advance(Estimator& e, int v, double t, const CoopFilterParams& p) {
   e.time_s[v] = t;
 }
 
-// The true pose at t: the latest sample at or before it (the first when all are later).
-Pose2 TruthAt(const Trajectory& path, double t) {
-  const auto after = std::upper_bound(path.begin(), path.end(), t,
-                                      [](double time, const StampedPose& s) { return time < s.t_s; });
-  return after == path.begin() ? path.front().pose : std::prev(after)->pose;
+// The true pose at t: the nearer of the samples around it, if one is within kMaxTruthGapS (a
+// recording whose truth stops early, or has a hole, is scored where it has truth only).
+constexpr double kMaxTruthGapS = 0.5;
+std::optional<Pose2> TruthAt(const Trajectory& path, double t) {
+  const auto after = std::lower_bound(path.begin(), path.end(), t,
+                                      [](const StampedPose& s, double time) { return s.t_s < time; });
+  const StampedPose* best = nullptr;
+  if (after != path.end()) best = &*after;
+  if (after != path.begin()) {
+    const StampedPose& before = *std::prev(after);
+    if (best == nullptr || t - before.t_s < best->t_s - t) best = &before;
+  }
+  if (best == nullptr || std::abs(best->t_s - t) > kMaxTruthGapS) return std::nullopt;
+  return best->pose;
 }
 
-void Record(CoopVehicleTrace& trace, double t, const Pose2& estimate, const Eigen::Matrix3d& cov,
+// Records the estimate at t when the truth has a pose then; returns whether it did.
+bool Record(CoopVehicleTrace& trace, double t, const Pose2& estimate, const Eigen::Matrix3d& cov,
             const Trajectory& truth) {
+  const std::optional<Pose2> true_pose = TruthAt(truth, t);
+  if (!true_pose) return false;
   trace.estimate.push_back({t, estimate});
   trace.covariance.push_back(cov);
-  trace.truth.push_back({t, TruthAt(truth, t)});
+  trace.truth.push_back({t, *true_pose});
+  return true;
 }
 
 LandmarkId TrueId(const FleetLog& log, const std::vector<LandmarkId>& true_ids, int event) {
@@ -170,8 +184,8 @@ CoopModeResult DeadReckoning(const FleetLog& log, const FleetTruth& truth,
   for (const FleetEvent& e : log.events) {
     if (e.kind != FleetEvent::Kind::kControl) continue;
     CoopVehicleTrace& trace = out.vehicles[e.vehicle];
-    if (e.t_s - last[e.vehicle] >= p.record_period_s) {
-      Record(trace, e.t_s, pose[e.vehicle], Eigen::Matrix3d::Zero(), truth.paths[e.vehicle]);
+    if (e.t_s - last[e.vehicle] >= p.record_period_s &&
+        Record(trace, e.t_s, pose[e.vehicle], Eigen::Matrix3d::Zero(), truth.paths[e.vehicle])) {
       last[e.vehicle] = e.t_s;
     }
     Control u(2);
@@ -195,9 +209,9 @@ void Process(const FleetLog& log, const FleetTruth& truth, const std::vector<Lan
     if (ev.kind == FleetEvent::Kind::kControl) {
       const int v = ev.vehicle;
       Advance(e, v, ev.t_s, p);
-      if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s) {
-        Record(out->vehicles[v], ev.t_s, e.filter->PoseOf(v), e.filter->PoseCovarianceOf(v),
-               truth.paths[v]);
+      if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s &&
+          Record(out->vehicles[v], ev.t_s, e.filter->PoseOf(v), e.filter->PoseCovarianceOf(v),
+                 truth.paths[v])) {
         e.last_record_s[v] = ev.t_s;
       }
       e.control[v] = Control(2);

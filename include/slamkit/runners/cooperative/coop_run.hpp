@@ -48,7 +48,8 @@ struct CoopFilterParams {
   double record_period_s = 0.0;
 };
 
-// One vehicle as its estimator saw it, at the times of the record.
+// One vehicle as its estimator saw it, at the times of the record: its controls' times (at most
+// one per record_period_s) where the truth has a sample within 0.5 s.
 struct CoopVehicleTrace {
   Trajectory estimate;
   std::vector<Eigen::Matrix3d> covariance;  // zero for dead reckoning
