@@ -1,6 +1,8 @@
 // ReadMrclam and MrclamFleet on a folder written from one input: sections headed by a line
 // `=== NAME` become the files NAME (Barcodes.dat, Landmark_Groundtruth.dat, RobotN_*.dat).
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -32,10 +34,11 @@ std::filesystem::path WriteFolder(std::string_view text) {
     if (line.starts_with("=== ")) {
       flush();
       name = std::string(line.substr(4));
-      if (name.empty() || name.find_first_of("/\\") != std::string::npos || name == "." ||
-          name == ".." || name.size() > 64) {
-        name.clear();
-      }
+      // Plain file names only ([A-Za-z0-9_.], not "." or ".."): the harness's own limit.
+      const bool plain = std::all_of(name.begin(), name.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.';
+      });
+      if (!plain || name.empty() || name == "." || name == ".." || name.size() > 64) name.clear();
     } else {
       body.append(line).push_back('\n');
     }
