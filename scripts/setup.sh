@@ -39,12 +39,9 @@ case "$flavour" in
   # Release, and -O1 is what the sanitizers' authors advise; -g1 keeps file and line in every
   # report at a fraction of full debug information's compile and link time. GCC, as the Release
   # build: under clang three seeded tests draw other noise from the same seed (stop 34's note).
-  # Not -march=native: on an AVX-512 processor that GCC 12.2 tunes generically (as for
-  # -march=x86-64-v4), -O1 with the sanitizers inlines Eigen's AVX-512 transpose into code where
-  # -Wuninitialized fires on the intrinsics' own `__m512d __Y = __Y;`, which -Werror makes fatal.
+  # Not -march=native: SLAMKIT_SANITIZE turns SLAMKIT_NATIVE's default off (CMakeLists.txt).
   asan)
     args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_SANITIZE=ON
-          -DSLAMKIT_NATIVE=OFF
           -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF) ;;
   # The libFuzzer harnesses (fuzz/, run by scripts/fuzz.sh): clang with ASan and UBSan, only the
   # libraries and the harnesses. RelWithDebInfo with the flags given here rather than its default
