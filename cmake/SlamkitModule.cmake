@@ -75,7 +75,9 @@ function(slamkit_module name)
 endfunction()
 
 # slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...] [NEEDS_CLI]): one gtest binary registered
-# with ctest. Tests that run the `slamkit` program (NEEDS_CLI, and every test in tests/apps) see
+# with ctest. The tests labelled `slow` or `release` are what scripts/test.sh builds and runs in
+# the Release tree (target slamkit_release_tests, ctest -L 'slow|release'); every test but the
+# slow ones runs in the sanitizer tree. Tests that run the `slamkit` program (NEEDS_CLI, and every test in tests/apps) see
 # its path as SLAMKIT_CLI.
 #
 # A test that cannot be built in this configuration is skipped with a message: one that needs
@@ -120,4 +122,7 @@ function(slamkit_test)
   slamkit_target_options(${name})
   include(GoogleTest)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+  if("slow" IN_LIST ARG_LABELS OR "release" IN_LIST ARG_LABELS)
+    set_property(GLOBAL APPEND PROPERTY SLAMKIT_RELEASE_TESTS ${name})
+  endif()
 endfunction()

@@ -3,13 +3,14 @@
 # Usage: scripts/fuzz.sh READER|all SECONDS   (READER: carmen, carmen_gz, relations, isam,
 #        landmark_csv, scenario, floor_plan, waypoints, occupancy_image, trajectory,
 #        suite_manifest, mrclam)
-# Needs the fuzz build (scripts/setup.sh fuzz). Starts from the seeds in fuzz/corpus/READER,
-# copied into build/fuzz/corpus-work/READER, which the fuzzer grows (the repository's seeds stay
-# as they are; the working corpus is kept between runs so that campaigns build on each other).
+# Needs the sanitizer build (scripts/setup.sh asan), which holds the harnesses. Starts from the
+# seeds in fuzz/corpus/READER, copied into build/asan/corpus-work/READER, which the fuzzer grows
+# (the repository's seeds stay as they are; the working corpus is kept between runs so that
+# campaigns build on each other).
 # Prints the executions and the result; exits non-zero on any finding (a crash, an exception
 # other than InputError, a sanitizer report, a leak, an input slower than 2 s, more than 2 GB).
-# The input that failed goes to build/fuzz/artifacts/READER/, the fuzzer's output to
-# build/fuzz/logs/READER.log.
+# The input that failed goes to build/asan/artifacts/READER/, the fuzzer's output to
+# build/asan/logs/READER.log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,14 +19,14 @@ readers=(carmen carmen_gz relations isam landmark_csv scenario floor_plan waypoi
 usage() { echo "usage: scripts/fuzz.sh READER|all SECONDS (READER: ${readers[*]})" >&2; exit 2; }
 [ $# -eq 2 ] || usage
 [[ $2 =~ ^[1-9][0-9]*$ ]] || usage
-build=build/fuzz
+build=build/asan
 
 run() {
   local reader=$1 seconds=$2
   local fuzzer=$build/bin/${reader}_fuzzer
   if [ ! -d "fuzz/corpus/$reader" ]; then usage; fi
   if [ ! -x "$fuzzer" ]; then
-    echo "fuzz: $fuzzer is missing: run scripts/setup.sh fuzz first" >&2
+    echo "fuzz: $fuzzer is missing: run scripts/setup.sh asan first" >&2
     return 2
   fi
   local work=$build/corpus-work/$reader artifacts=$build/artifacts/$reader

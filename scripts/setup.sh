@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages slamkit needs (only those missing) and builds it.
-# Usage: scripts/setup.sh [release|asan|fuzz] [TARGET ...]   (default: release, every target).
+# Usage: scripts/setup.sh [release|asan] [TARGET ...]   (default: release, every target).
 # Idempotent and quick when done: compiler outputs are cached by ccache (~/.cache/ccache, keyed
 # on paths relative to the checkout, so a second clone reuses them).
 #   release  GCC, -O3: the library, the `slamkit` program, the tests and the benchmarks.
-#   asan     GCC with AddressSanitizer and UndefinedBehaviorSanitizer at -O1 (asserts and
+#   asan     clang with AddressSanitizer and UndefinedBehaviorSanitizer at -O1 (asserts and
 #            Eigen's index checks on): the tests not labelled `slow` (test.sh runs those in
-#            Release only) and the program they run.
-#   fuzz     clang with ASan and UBSan: the libraries and the libFuzzer harnesses of the input
-#            readers (fuzz/, scripts/fuzz.sh).
+#            Release only), the program they run, and the libFuzzer harnesses of the input
+#            readers (fuzz/, scripts/fuzz.sh), all in one tree.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -37,28 +36,25 @@ case "$flavour" in
   release) args=(-DCMAKE_BUILD_TYPE=Release) ;;
   # -O1 rather than Debug's -O0: the same tests ran 15 times slower at -O0 under ASan than in
   # Release, and -O1 is what the sanitizers' authors advise; -g1 keeps file and line in every
-  # report at a fraction of full debug information's compile and link time. GCC, as the Release
-  # build: under clang three seeded tests draw other noise from the same seed (stop 34's note).
-  # Not -march=native: SLAMKIT_SANITIZE turns SLAMKIT_NATIVE's default off (CMakeLists.txt).
+  # report at a fraction of full debug information's compile and link time. clang, because
+  # libFuzzer is part of clang: one sanitizer build serves the tests and the harnesses (a
+  # separate fuzz build compiled every library a third time). Not -march=native:
+  # SLAMKIT_SANITIZE turns SLAMKIT_NATIVE's default off (CMakeLists.txt).
   asan)
-    args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_SANITIZE=ON
-          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF) ;;
-  # The libFuzzer harnesses (fuzz/, run by scripts/fuzz.sh): clang with ASan and UBSan, only the
-  # libraries and the harnesses. RelWithDebInfo with the flags given here rather than its default
-  # ones: -O2 runs several times more inputs per second than Debug's -O0 does under ASan, and
-  # leaving out -DNDEBUG keeps assert() and Eigen's index checks, which find bugs that -O2 alone
-  # would let pass silently.
-  fuzz)
     env_args=(CC=clang CXX=clang++)
-    args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g"
-          -DSLAMKIT_BUILD_FUZZ=ON -DSLAMKIT_BUILD_TESTS=OFF -DSLAMKIT_BUILD_BENCH=OFF
-          -DSLAMKIT_BUILD_APPS=OFF -DSLAMKIT_BUILD_REPORT=OFF) ;;
-  *) echo "setup: unknown build '$flavour' (release|asan|fuzz)" >&2; exit 2 ;;
+    args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_BUILD_FUZZ=ON
+          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF) ;;
+  *) echo "setup: unknown build '$flavour' (release|asan)" >&2; exit 2 ;;
 esac
 build=build/$flavour
-if [ ! -f "$build/build.ninja" ]; then
+# Configured afresh when the tree is new or was configured with other settings (an older
+# checkout's asan build was GCC's): the settings are kept beside the tree.
+settings="${env_args[*]} ${args[*]}"
+if [ ! -f "$build/build.ninja" ] || [ "$(cat "$build/setup-settings" 2>/dev/null)" != "$settings" ]; then
+  rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
   env "${env_args[@]}" cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
     "${args[@]}"
+  echo "$settings" >"$build/setup-settings"
 fi
 export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=1
 cmake --build "$build" -j "$(nproc)" ${targets[@]:+--target "${targets[@]}"}

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/numeric_jacobian.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -29,7 +30,7 @@ TEST(Pose2, ComposeWithInverseIsIdentity) {
     EXPECT_NEAR(e.x(), 0.0, 1e-12);
     EXPECT_NEAR(e.y(), 0.0, 1e-12);
     EXPECT_NEAR(e.theta(), 0.0, 1e-12);
-    const Eigen::Vector2d p(rng.Uniform(-5, 5), rng.Uniform(-5, 5));
+    const Eigen::Vector2d p = testing::UniformVector2(rng, -5, 5, -5, 5);
     EXPECT_TRUE(a.TransformTo(a.TransformFrom(p)).isApprox(p, 1e-12));
   }
 }
@@ -50,7 +51,7 @@ TEST(Pose2, JacobiansMatchCentralDifferences) {
   Rng rng(7);
   for (int i = 0; i < 100; ++i) {
     const Pose2 a = RandomPose(rng), b = RandomPose(rng);
-    const Eigen::Vector2d p(rng.Uniform(-5, 5), rng.Uniform(-5, 5));
+    const Eigen::Vector2d p = testing::UniformVector2(rng, -5, 5, -5, 5);
     Eigen::Matrix3d J_a, J_b, J_inv;
     a.Compose(b, &J_a, &J_b);
     auto compose_a = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {

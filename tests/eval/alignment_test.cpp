@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "slamkit/core/rng.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -14,7 +15,7 @@ TEST(AlignPoints, RecoversKnownRigidMotion) {
   const Pose2 motion(3.0, -1.5, 0.7);
   std::vector<Eigen::Vector2d> from, to;
   for (int i = 0; i < 30; ++i) {
-    from.emplace_back(rng.Uniform(-10, 10), rng.Uniform(-10, 10));
+    from.push_back(testing::UniformVector2(rng, -10, 10, -10, 10));
     to.push_back(motion.TransformFrom(from.back()));
   }
   const RigidAlignment a = AlignPoints(from, to);

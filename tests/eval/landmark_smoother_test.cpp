@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "slamkit/core/rng.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -39,9 +40,9 @@ Log MakeLog(double noise) {
   log.truth.push_back(Pose2());
   log.dead_reckoning.push_back(Pose2());
   for (int k = 0; k < 120; ++k) {
-    const Pose2 measured(step.x() + noise * rng.Normal(0.0, kOdometrySigmaM),
-                         step.y() + noise * rng.Normal(0.0, kOdometrySigmaM),
-                         step.theta() + noise * rng.Normal(0.0, kOdometrySigmaRad));
+    const Eigen::Vector3d e =
+        noise * testing::NormalVector3(rng, kOdometrySigmaM, kOdometrySigmaM, kOdometrySigmaRad);
+    const Pose2 measured(step.x() + e.x(), step.y() + e.y(), step.theta() + e.z());
     const Eigen::Vector3d sigmas(kOdometrySigmaM, kOdometrySigmaM, kOdometrySigmaRad);
     log.odometry.push_back({k, k + 1, measured, sigmas.cwiseAbs2().asDiagonal()});
     log.truth.push_back(log.truth.back().Compose(step));
@@ -51,8 +52,7 @@ Log MakeLog(double noise) {
     for (int id = 0; id < static_cast<int>(log.landmarks.size()); ++id) {
       const Eigen::Vector2d local = log.truth[k].TransformTo(log.landmarks[id]);
       if (local.norm() > 12.0) continue;
-      const Eigen::Vector2d z = local + noise * Eigen::Vector2d(rng.Normal(0.0, kSightingSigmaM),
-                                                                rng.Normal(0.0, kSightingSigmaM));
+      const Eigen::Vector2d z = local + noise * testing::NormalVector2(rng, kSightingSigmaM, kSightingSigmaM);
       log.sightings.push_back(
           {k, id, z, kSightingSigmaM * kSightingSigmaM * Eigen::Matrix2d::Identity()});
     }
@@ -73,8 +73,8 @@ TEST(SmoothLandmarkSlam, RecoversExactMeasurementsFromAPerturbedStart) {
   std::vector<Pose2> start = log.truth;
   Rng rng(3);
   for (std::size_t k = 1; k < start.size(); ++k) {
-    start[k] = Pose2(start[k].x() + rng.Normal(0.0, 0.3), start[k].y() + rng.Normal(0.0, 0.3),
-                     start[k].theta() + rng.Normal(0.0, 0.03));
+    const Eigen::Vector3d e = testing::NormalVector3(rng, 0.3, 0.3, 0.03);
+    start[k] = Pose2(start[k].x() + e.x(), start[k].y() + e.y(), start[k].theta() + e.z());
   }
   const LandmarkSmootherResult r = SmoothLandmarkSlam(start, log.odometry, log.sightings);
   ASSERT_TRUE(r.converged);

@@ -12,6 +12,7 @@
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/point_sensor.hpp"
 #include "slamkit/models/range_bearing.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit::testing {
 
@@ -56,8 +57,8 @@ class LandmarkCircuit {
       if (!sensor_.IsVisible(truth_, landmarks_[i])) continue;
       PointObservation obs;
       obs.z = sensor_.Predict(truth_, landmarks_[i]);
-      obs.z += Eigen::Vector2d(rng_.Normal(0.0, sensor_.params().sigma_range_m),
-                               rng_.Normal(0.0, sensor_.params().sigma_bearing_rad));
+      obs.z += testing::NormalVector2(rng_, sensor_.params().sigma_range_m,
+                                      sensor_.params().sigma_bearing_rad);
       obs.R = R;
       obs.id = static_cast<LandmarkId>(i);
       out.push_back(obs);

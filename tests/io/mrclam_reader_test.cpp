@@ -69,7 +69,10 @@ TEST_F(MrclamFolder, MapsBarcodesToSubjectsAndCountsUnknownOnes) {
 TEST_F(MrclamFolder, TheFleetMergesTheRobotsInTimeOrderWithSightingsBeforeControls) {
   files_["Robot2_Odometry.dat"] = "100.2 0.2 0.0\n100.8 0.0 0.0\n";  // at Robot1's sighting time
   Write();
-  const auto [log, truth] = MrclamFleet(ReadMrclam(dir_), {});
+  // Not a structured binding: clang 14 cannot capture one in the lambda below.
+  const std::pair<FleetLog, FleetTruth> fleet = MrclamFleet(ReadMrclam(dir_), {});
+  const FleetLog& log = fleet.first;
+  const FleetTruth& truth = fleet.second;
   ASSERT_EQ(log.vehicles, 2);
   EXPECT_EQ(log.start_poses[1].translation(), Eigen::Vector2d(1.5, 0.0));
   for (std::size_t i = 1; i < log.events.size(); ++i) {

@@ -9,6 +9,7 @@
 
 #include "slamkit/core/rng.hpp"
 #include "slamkit/planning/kmeans.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -26,7 +27,7 @@ Labelled SeparatedClusters(std::uint64_t seed) {
   Labelled out;
   for (int c = 0; c < 3; ++c) {
     for (int i = 0; i < 25 + 5 * c; ++i) {
-      out.points.push_back(kCentres[c] + Eigen::Vector2d(rng.Normal(), rng.Normal()));
+      out.points.push_back(kCentres[c] + testing::NormalVector2(rng, 1.0, 1.0));
       out.labels.push_back(c);
     }
   }
@@ -62,7 +63,7 @@ TEST(KMeans, SeedingIsDeterministicPerSeedAndDependsOnIt) {
   // Uniform points: no clear clusters, so the result shows the seeding.
   Rng data_rng(3);
   std::vector<Eigen::Vector2d> points;
-  for (int i = 0; i < 200; ++i) points.emplace_back(data_rng.Uniform(0, 50), data_rng.Uniform(0, 50));
+  for (int i = 0; i < 200; ++i) points.push_back(testing::UniformVector2(data_rng, 0, 50, 0, 50));
   const KMeansParams seeding_only{5, 1};
   std::set<std::vector<double>> different;
   for (std::uint64_t seed = 1; seed <= 5; ++seed) {
@@ -85,7 +86,7 @@ TEST(KMeans, SeedingIsDeterministicPerSeedAndDependsOnIt) {
 TEST(KMeans, StopsAtTheIterationLimit) {
   Rng data_rng(9);
   std::vector<Eigen::Vector2d> points;
-  for (int i = 0; i < 300; ++i) points.emplace_back(data_rng.Uniform(0, 50), data_rng.Uniform(0, 50));
+  for (int i = 0; i < 300; ++i) points.push_back(testing::UniformVector2(data_rng, 0, 50, 0, 50));
   Rng rng(1);
   const KMeansResult limited = KMeans(points, {8, 2}, rng);
   EXPECT_EQ(limited.iterations, 2);

@@ -22,6 +22,7 @@
 #include "slamkit/core/rng.hpp"
 
 #include "common/temp_dir.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -157,11 +158,11 @@ PathFigureData SamplePathData(int landmarks) {
     data.estimate.push_back({0.1 * i, Pose2(20.3 * std::cos(a), 8.2 * std::sin(a), a)});
   }
   for (int i = 0; i < landmarks; ++i) {
-    const Eigen::Vector2d p(rng.Uniform(-25.0, 25.0), rng.Uniform(-12.0, 12.0));
+    const Eigen::Vector2d p = testing::UniformVector2(rng, -25.0, 25.0, -12.0, 12.0);
     data.true_landmarks.landmarks.push_back({i, p});
     MappedLandmark m;
     m.source_id = i;
-    m.position_m = p + Eigen::Vector2d(rng.Normal(0.0, 0.2), rng.Normal(0.0, 0.2));
+    m.position_m = p + testing::NormalVector2(rng, 0.2, 0.2);
     m.covariance << 0.04, 0.01, 0.01, 0.02;
     data.map.landmarks.push_back(m);
   }
@@ -354,9 +355,9 @@ TEST(CovarianceEllipse, PointsLieOnTheSigmaContourAndReachTheMajorAxis) {
   for (int trial = 0; trial < 200; ++trial) {
     const double angle = rng.Uniform(-std::numbers::pi, std::numbers::pi);
     const Eigen::Matrix2d R = Eigen::Rotation2Dd(angle).toRotationMatrix();
-    const Eigen::Vector2d lambda(rng.Uniform(0.01, 4.0), rng.Uniform(0.01, 4.0));
+    const Eigen::Vector2d lambda = testing::UniformVector2(rng, 0.01, 4.0, 0.01, 4.0);
     const Eigen::Matrix2d cov = R * lambda.asDiagonal() * R.transpose();
-    const Eigen::Vector2d mean(rng.Uniform(-50.0, 50.0), rng.Uniform(-50.0, 50.0));
+    const Eigen::Vector2d mean = testing::UniformVector2(rng, -50.0, 50.0, -50.0, 50.0);
     const double sigma = rng.Uniform(0.5, 3.0);
     const int points = 7 + trial % 40;
     const std::vector<Eigen::Vector2d> ring = CovarianceEllipse(mean, cov, sigma, points);

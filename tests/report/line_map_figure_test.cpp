@@ -12,6 +12,7 @@
 #include "png_pixels.hpp"
 #include "slamkit/core/rng.hpp"
 #include "slamkit/report/figures.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -36,8 +37,7 @@ LineMapFigureData SampleRoom(int points) {
   for (int i = 0; i < points; ++i) {
     const Segment2& wall = data.walls[i % 4];
     const double s = rng.Uniform(0.0, 1.0);
-    data.points.push_back(wall.a + s * (wall.b - wall.a) +
-                          Eigen::Vector2d(rng.Normal(0.0, 0.02), rng.Normal(0.0, 0.02)));
+    data.points.push_back(wall.a + s * (wall.b - wall.a) + testing::NormalVector2(rng, 0.02, 0.02));
   }
   for (int i = 0; i <= 100; ++i) {
     const double a = 2.0 * std::numbers::pi * i / 100;

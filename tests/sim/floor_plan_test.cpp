@@ -11,6 +11,7 @@
 
 #include "common/synthetic_room.hpp"
 #include "slamkit/core/rng.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -81,13 +82,14 @@ FloorPlan RandomPlan(int count, Rng& rng) {
   FloorPlan plan;
   for (int i = 0; i < count; ++i) {
     if (i % 3 == 0) {
-      const Eigen::Vector2d a(std::floor(rng.Uniform(0, 50)), std::floor(rng.Uniform(0, 50)));
+      const Eigen::Vector2d a = testing::UniformVector2(rng, 0, 50, 0, 50).array().floor();
       const double length = std::floor(rng.Uniform(1, 6));
       const Eigen::Vector2d along = i % 2 ? Eigen::Vector2d(length, 0) : Eigen::Vector2d(0, length);
       plan.walls.push_back({a, a + along});
     } else {
-      const Eigen::Vector2d a(rng.Uniform(0, 50), rng.Uniform(0, 50));
-      plan.walls.push_back({a, a + rng.Uniform(0.1, 8.0) * Direction(rng.Uniform(-4, 4))});
+      const Eigen::Vector2d a = testing::UniformVector2(rng, 0, 50, 0, 50);
+      const double angle = rng.Uniform(-4, 4);  // drawn before the length, as GCC did
+      plan.walls.push_back({a, a + rng.Uniform(0.1, 8.0) * Direction(angle)});
     }
   }
   return plan;
@@ -98,7 +100,7 @@ TEST(CastRay, GridEqualsBruteForceOnRandomPlan) {
   const FloorPlan plan = RandomPlan(500, rng);
   int mismatches = 0;
   for (int i = 0; i < 10000; ++i) {
-    Eigen::Vector2d origin(rng.Uniform(-10, 60), rng.Uniform(-10, 60));
+    Eigen::Vector2d origin = testing::UniformVector2(rng, -10, 60, -10, 60);
     if (i % 4 == 0) origin = origin.array().floor();  // on cell corners
     // Every fifth ray is axis-aligned: it runs along cell boundaries and walls.
     const double angle = i % 5 == 0 ? (i / 5 % 4) * std::numbers::pi / 2 : rng.Uniform(-4, 4);

@@ -49,6 +49,7 @@ CooperativeEkfSlam::CooperativeEkfSlam(const CooperativeEkfSlamParams& params, i
       ekf_(0),
       point_kind_(ekf_.RegisterKind(kPointKind)),
       point_model_(*sensor_, point_kind_, params.ekf.association_margin_m),
+      fej_models_(std::max(vehicles, 0), FirstEstimatesPointModel(*sensor_)),
       block_of_(vehicles, -1),
       latest_(vehicles) {
   if (vehicles < 1 || self < -1 || self >= vehicles) {
@@ -74,6 +75,8 @@ void CooperativeEkfSlam::Reset(std::span<const Pose2> start_poses,
   point_kind_ = ekf_.RegisterKind(kPointKind);
   for (int v = 0; v < vehicles_; ++v) {
     if (Tracks(v)) ekf_.AddBlock(kPoseKind, start_poses[v].vector(), pose_cov);
+    fej_models_[v].Clear();
+    fej_models_[v].SetPriorPose(start_poses[v]);
   }
   landmarks_.Clear();
   latest_.assign(vehicles_, {});
@@ -101,6 +104,10 @@ void CooperativeEkfSlam::Predict(int vehicle, const Control& u, double dt_s,
   Eigen::Matrix3d J_x_x;
   ControlJacobian J_x_u;
   const Pose2 moved = motion_->Move(ekf_.PoseOf(block), u, dt_s, &J_x_x, &J_x_u);
+  if (params_.ekf.jacobians == JacobianEstimates::kFirstEstimates) {
+    FirstEstimatesMotionJacobian(moved, fej_models_[vehicle].prior_pose(), &J_x_x);
+  }
+  fej_models_[vehicle].SetPriorPose(moved);
   ekf_.PredictPose(block, moved, J_x_x, J_x_u,
                    control_noise ? *control_noise : motion_->Noise(u, dt_s));
 }
@@ -152,11 +159,20 @@ std::vector<PointObservation> CooperativeEkfSlam::Extended(const FleetScan& scan
   return extended;
 }
 
+// With kFirstEstimates, H from the vehicle's FirstEstimatesPointModel (Huang, Mourikis,
+// Roumeliotis 2008, Sec. IV); the innovation always from the current means.
+const ObservationModel& CooperativeEkfSlam::UpdateModel(int vehicle) const {
+  if (params_.ekf.jacobians == JacobianEstimates::kFirstEstimates) return fej_models_[vehicle];
+  return point_model_;
+}
+
 // The UpdatePipeline from pose block `block`, on the whole scan for a per-scan associator or
 // schedule, else one sighting at a time (EkfSlam's schedules).
 std::vector<AssociationDecision> CooperativeEkfSlam::RunPipeline(
-    int block, std::span<const PointObservation> sightings) {
+    int vehicle, std::span<const PointObservation> sightings) {
   const EkfSlamParams& p = params_.ekf;
+  const int block = block_of_[vehicle];
+  const int before = NumLandmarks();
   const bool per_scan = p.schedule == UpdateSchedule::kPerScan ||
                         p.association_method == AssociationMethod::kJointCompatibility ||
                         p.association_method == AssociationMethod::kGlobalNearestNeighbour;
@@ -164,13 +180,23 @@ std::vector<AssociationDecision> CooperativeEkfSlam::RunPipeline(
   std::vector<AssociationDecision> decisions;
   const std::size_t part = per_scan ? std::max<std::size_t>(sightings.size(), 1) : 1;
   for (std::size_t i = 0; i < sightings.size(); i += part) {
-    PointSightings points({&point_model_, &point_model_, associator_.get()}, landmarks_,
+    PointSightings points({&point_model_, &UpdateModel(vehicle), associator_.get()}, landmarks_,
                           sightings.subspan(i, std::min(part, sightings.size() - i)), taken);
     LandmarkSightings* const kinds[] = {&points};
     UpdatePipeline pipeline(ekf_, block, kinds);
     pipeline.Run(*selection_, false);
     MarkTaken(pipeline.Decisions(0), taken);
     decisions.insert(decisions.end(), pipeline.Decisions(0).begin(), pipeline.Decisions(0).end());
+  }
+  // Huang et al. 2008, Sec. IV: each new landmark's first estimate, its initialised mean.
+  for (int l = before; l < NumLandmarks(); ++l) {
+    for (FirstEstimatesPointModel& m : fej_models_) {
+      m.Record(landmarks_.Block(l), ekf_.Mean(landmarks_.Block(l)));
+    }
+  }
+  for (const AssociationDecision& d : decisions) {
+    counts_.landmark_updates += d.kind == AssociationDecision::Kind::kMatched;
+    counts_.landmark_dropped += d.kind == AssociationDecision::Kind::kDropped;
   }
   return decisions;
 }
@@ -181,7 +207,7 @@ std::vector<AssociationDecision> CooperativeEkfSlam::Update(const FleetScan& sca
   const bool own = scan.vehicle == self_;
   switch (params_.mode) {
     case CooperativeMode::kMono:
-      if (own) decisions = RunPipeline(block_of_[self_], scan.landmarks);
+      if (own) decisions = RunPipeline(self_, scan.landmarks);
       break;
     case CooperativeMode::kExtended:
       if (own) {
@@ -189,16 +215,16 @@ std::vector<AssociationDecision> CooperativeEkfSlam::Update(const FleetScan& sca
           ApplyVehicleSighting(self_, obs);
           latest_[obs.target] = {scan.t_s, obs};
         }
-        decisions = RunPipeline(block_of_[self_], scan.landmarks);
+        decisions = RunPipeline(self_, scan.landmarks);
       } else {
         const std::vector<PointObservation> extended = Extended(scan);
         counts_.extended += static_cast<long>(extended.size());
-        if (!extended.empty()) decisions = RunPipeline(block_of_[self_], extended);
+        if (!extended.empty()) decisions = RunPipeline(self_, extended);
       }
       break;
     case CooperativeMode::kExact:
       for (const VehicleObservation& obs : scan.vehicles) ApplyVehicleSighting(scan.vehicle, obs);
-      decisions = RunPipeline(block_of_[scan.vehicle], scan.landmarks);
+      decisions = RunPipeline(scan.vehicle, scan.landmarks);
       break;
   }
   ekf_.ApplyPendingDowndate();

@@ -69,7 +69,13 @@ Pose2 SampleProposal(const ProposalDistribution& proposal, Rng& rng) {
   // A tiny jitter keeps the factor defined when every sample but one weighs nothing.
   const Eigen::Matrix3d c = proposal.covariance + 1e-12 * Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d L = c.llt().matrixL();
-  const Eigen::Vector3d n(rng.Normal(), rng.Normal(), rng.Normal());
+  // One draw per statement: the order in which a call's arguments are evaluated is unspecified
+  // (GCC goes right to left, clang left to right), and a seed must give one output whatever the
+  // compiler. Heading first, then y, then x: the order of GCC's builds, whose results docs/ holds.
+  const double n_theta = rng.Normal();
+  const double n_y = rng.Normal();
+  const double n_x = rng.Normal();
+  const Eigen::Vector3d n(n_x, n_y, n_theta);
   const Eigen::Vector3d d = L * n;
   return Pose2(proposal.mean.x() + d.x(), proposal.mean.y() + d.y(),
                WrapAngle(proposal.mean.theta() + d.z()));

@@ -65,7 +65,9 @@ nlohmann::json CoopMetricsJson(const CoopStudyResult& r) {
         {"update_time_mean_s", m.update_time_mean_s},
         {"vehicle_updates", m.counts.vehicle_updates},
         {"vehicle_gated", m.counts.vehicle_gated},
-        {"extended_observations", m.counts.extended}};
+        {"extended_observations", m.counts.extended},
+        {"landmark_updates", m.counts.landmark_updates},
+        {"landmark_dropped", m.counts.landmark_dropped}};
   }
   return {{"runs", r.runs}, {"modes", modes}, {"wall_time_s", r.wall_time_s}};
 }

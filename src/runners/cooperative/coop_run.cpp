@@ -145,6 +145,8 @@ void AddCounts(const CooperativeEkfSlam::Counts& c, CooperativeEkfSlam::Counts* 
   sum->vehicle_updates += c.vehicle_updates;
   sum->vehicle_gated += c.vehicle_gated;
   sum->extended += c.extended;
+  sum->landmark_updates += c.landmark_updates;
+  sum->landmark_dropped += c.landmark_dropped;
 }
 
 }  // namespace

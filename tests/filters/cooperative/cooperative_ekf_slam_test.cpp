@@ -19,13 +19,20 @@ namespace {
 const UnicycleParams kMotion{0.05, 0.01};
 const Eigen::Matrix2d kR = Eigen::Vector2d(0.1 * 0.1, 0.01 * 0.01).asDiagonal();
 
+RangeBearingParams WideSensor() {
+  RangeBearingParams sensor;
+  sensor.max_range_m = 500.0;
+  return sensor;
+}
+
 CooperativeEkfSlam MakeFilter(CooperativeMode mode, int vehicles, int self,
-                              AssociationMethod association = AssociationMethod::kKnown) {
+                              AssociationMethod association = AssociationMethod::kKnown,
+                              JacobianEstimates jacobians = JacobianEstimates::kCurrent) {
   CooperativeEkfSlamParams p;
   p.mode = mode;
   p.ekf.association_method = association;
-  RangeBearingParams sensor;
-  sensor.max_range_m = 500.0;
+  p.ekf.jacobians = jacobians;
+  const RangeBearingParams sensor = WideSensor();
   return CooperativeEkfSlam(p, vehicles, self, std::make_unique<UnicycleModel>(kMotion),
                             std::make_unique<RangeBearingModel>(sensor));
 }
@@ -102,6 +109,40 @@ TEST(CooperativeEkfSlam, TwoVehiclesThatNeverMeetAreTwoMonoFilters) {
     EXPECT_LT((exact.PoseCovarianceOf(v) - mono->PoseCovarianceOf(v)).cwiseAbs().maxCoeff(),
               1e-12);
   }
+}
+
+// Mono is EkfSlam's filter on the vehicle's own inputs, with first-estimates Jacobians too: the
+// prior pose each update linearises at and each landmark's first estimate are the same, so the
+// two agree to rounding, and FEJ is not the textbook filter on the same inputs.
+TEST(CooperativeEkfSlam, MonoWithFirstEstimatesIsEkfSlamWithFirstEstimates) {
+  Fleet fleet;
+  fleet.truth = {Pose2(0, 0, 0.3), Pose2(50, 0, 1.0)};
+  fleet.landmarks = {{5, 3}, {8, -2}, {2, 6}, {-3, 4}, {9, 7}};
+  EkfSlamParams ekf_params;
+  ekf_params.association_method = AssociationMethod::kKnown;
+  ekf_params.jacobians = JacobianEstimates::kFirstEstimates;
+  EkfSlam reference(ekf_params, std::make_unique<UnicycleModel>(kMotion),
+                    std::make_unique<RangeBearingModel>(WideSensor()));
+  reference.Reset(fleet.truth[0]);
+  CooperativeEkfSlam fej = MakeFilter(CooperativeMode::kMono, 2, 0, AssociationMethod::kKnown,
+                                      JacobianEstimates::kFirstEstimates);
+  CooperativeEkfSlam textbook = MakeFilter(CooperativeMode::kMono, 2, 0);
+  for (CooperativeEkfSlam* f : {&fej, &textbook}) f->Reset(fleet.truth);
+  for (int k = 0; k < 40; ++k) {
+    Control u(2);
+    u << 1.0, 0.3;
+    const Control noisy = fleet.Drive(0, u, 0.5);
+    reference.Predict(noisy, 0.5);
+    for (CooperativeEkfSlam* f : {&fej, &textbook}) f->Predict(0, noisy, 0.5);
+    const std::vector<int> seen = k < 5 ? std::vector<int>{0, 1} : std::vector<int>{0, 1, 2, 3, 4};
+    const FleetScan scan = fleet.Scan(0, seen, {});
+    reference.Update(scan.landmarks);
+    for (CooperativeEkfSlam* f : {&fej, &textbook}) f->Update(scan);
+  }
+  ASSERT_EQ(fej.NumLandmarks(), reference.NumLandmarks());
+  EXPECT_LT((fej.PoseOf(0).vector() - reference.pose().vector()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((fej.PoseCovarianceOf(0) - reference.PoseCovariance()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT((fej.PoseCovarianceOf(0) - textbook.PoseCovarianceOf(0)).cwiseAbs().maxCoeff(), 1e-6);
 }
 
 TEST(CooperativeEkfSlam, OneVehicleSightingReducesBothPositionCovariances) {

@@ -20,6 +20,7 @@
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -227,7 +228,8 @@ EkfSlam MakeLargeFilter(int landmarks) {
   slam.Reset(Pose2(1.0, -2.0, 0.4), Eigen::Vector3d(0.01, 0.02, 0.003).asDiagonal());
   Rng rng(21);
   for (int i = 0; i < landmarks; ++i) {
-    slam.AddLandmark(RangeBearingObs(rng.Uniform(2.0, 25.0), rng.Uniform(-3.0, 3.0), i));
+    const Eigen::Vector2d z = testing::UniformVector2(rng, 2.0, 25.0, -3.0, 3.0);
+    slam.AddLandmark(RangeBearingObs(z.x(), z.y(), i));
     if (i % 10 == 0) slam.Predict(Odo(0.5, 0.05, 0.1), 0.1);
   }
   return slam;
@@ -239,13 +241,14 @@ std::vector<PointObservation> MixedScan(const EkfSlam& slam, int landmarks) {
   std::vector<PointObservation> scan;
   for (int k = 0; k < 40; ++k) {
     if (k % 3 == 2) {
-      scan.push_back(RangeBearingObs(rng.Uniform(3.0, 20.0), rng.Uniform(-3.0, 3.0), 1000 + k));
+      const Eigen::Vector2d z = testing::UniformVector2(rng, 3.0, 20.0, -3.0, 3.0);
+      scan.push_back(RangeBearingObs(z.x(), z.y(), 1000 + k));
       continue;
     }
     const int j = static_cast<int>(rng.Uniform(0.0, landmarks - 1e-9));
     const RangeBearing rb = PredictRangeBearing(slam.pose(), slam.LandmarkPosition(j));
-    scan.push_back(
-        RangeBearingObs(rb.range_m + rng.Normal(0, 0.1), rb.bearing_rad + rng.Normal(0, 0.02), j));
+    const Eigen::Vector2d e = testing::NormalVector2(rng, 0.1, 0.02);
+    scan.push_back(RangeBearingObs(rb.range_m + e.x(), rb.bearing_rad + e.y(), j));
   }
   return scan;
 }
@@ -432,7 +435,7 @@ TEST(TestModels, JacobiansMatchCentralDifferences) {
   for (int trial = 0; trial < 50; ++trial) {
     const Eigen::Vector3d x = testing::RandomPose(rng).vector();
     const Eigen::Vector3d y = testing::RandomPose(rng).vector();
-    const Eigen::Vector2d l(rng.Uniform(-5, 5), rng.Uniform(-3.1, 3.1));
+    const Eigen::Vector2d l = testing::UniformVector2(rng, -5, 5, -3.1, 3.1);
     Jacobians J;
     lines.Eval({x, l}, &J);
     const auto h_x = [&](const Eigen::VectorXd& v) { return lines.Eval({v, l}, nullptr); };
@@ -440,7 +443,7 @@ TEST(TestModels, JacobiansMatchCentralDifferences) {
     EXPECT_LT(MaxAbsDiff(J[0], testing::NumericJacobian(h_x, x, 1)), 1e-6);
     EXPECT_LT(MaxAbsDiff(J[1], testing::NumericJacobian(h_l, l, 1)), 1e-6);
 
-    const Eigen::Vector2d z(rng.Uniform(-5, 5), rng.Uniform(-3.1, 3.1));
+    const Eigen::Vector2d z = testing::UniformVector2(rng, -5, 5, -3.1, 3.1);
     Eigen::Matrix<double, 2, 3> J_l_x;
     Eigen::Matrix2d J_l_z;
     LineModel::InvertLine(x, z, &J_l_x, &J_l_z);

@@ -9,6 +9,7 @@
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/models/relative_point.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -24,7 +25,8 @@ EkfSlam MakeBusyFilter(int landmarks, std::uint64_t seed) {
   slam.Reset(Pose2(1.0, -2.0, 0.4), Eigen::Vector3d(0.01, 0.02, 0.003).asDiagonal());
   Rng rng(seed);
   for (int i = 0; i < landmarks; ++i) {
-    slam.AddLandmark(RangeBearingObs(rng.Uniform(2.0, 20.0), rng.Uniform(-3.0, 3.0), i));
+    const Eigen::Vector2d z = testing::UniformVector2(rng, 2.0, 20.0, -3.0, 3.0);
+    slam.AddLandmark(RangeBearingObs(z.x(), z.y(), i));
     slam.Predict(Odo(0.5, 0.05, 0.1), 0.1);
   }
   return slam;
@@ -123,13 +125,13 @@ TEST(EkfSlam, EqualsKalmanFilterOnLinearGaussianCase) {
   for (int step = 0; step < 20; ++step) {
     const Eigen::Vector2d d(0.4, 0.1 * (step % 3));
     robot += d;
-    const Eigen::Vector2d noisy = d + Eigen::Vector2d(rng.Normal(0, 0.1), rng.Normal(0, 0.1));
+    const Eigen::Vector2d noisy = d + testing::NormalVector2(rng, 0.1, 0.1);
     slam.Predict(Odo(noisy.x(), noisy.y(), 0.0), 1.0);
     m.head<2>() += noisy;
     C.topLeftCorner<2, 2>() += 0.01 * Eigen::Matrix2d::Identity();
     for (int k = 0; k < 3; ++k) {
       PointObservation obs;
-      obs.z = truth[k] - robot + Eigen::Vector2d(rng.Normal(0, 0.2), rng.Normal(0, 0.3));
+      obs.z = truth[k] - robot + testing::NormalVector2(rng, 0.2, 0.3);
       obs.R = R;
       obs.id = k;
       const int col = 2 + 2 * k;

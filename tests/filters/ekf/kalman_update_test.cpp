@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include "slamkit/core/rng.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -19,11 +20,11 @@ Eigen::Matrix2d RandomSpd(Rng& rng, double scale) {
 TEST(KalmanUpdate, EqualsTextbookFormula) {
   Rng rng(5);
   for (int trial = 0; trial < 50; ++trial) {
-    const Eigen::Vector2d x(rng.Uniform(-5, 5), rng.Uniform(-5, 5));
+    const Eigen::Vector2d x = testing::UniformVector2(rng, -5, 5, -5, 5);
     const Eigen::Matrix2d P = RandomSpd(rng, 2.0), R = RandomSpd(rng, 0.1);
     Eigen::Matrix2d H;
     H << rng.Uniform(-2, 2), rng.Uniform(-2, 2), rng.Uniform(-2, 2), rng.Uniform(-2, 2);
-    const Eigen::Vector2d nu(rng.Uniform(-1, 1), rng.Uniform(-1, 1));
+    const Eigen::Vector2d nu = testing::UniformVector2(rng, -1, 1, -1, 1);
 
     const Eigen::Matrix2d S = H * P * H.transpose() + R;
     const Eigen::Matrix2d K = P * H.transpose() * S.inverse();

@@ -13,6 +13,7 @@
 #include "slamkit/filters/fastslam/fastslam.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -44,15 +45,15 @@ Drive MakeDrive(int steps, std::uint64_t seed) {
     for (const Eigen::Vector2d& tree : d.trees) {
       const RangeBearing rb = PredictRangeBearing(truth, tree);
       if (rb.range_m > 14.0) continue;
-      scan.push_back(RangeBearingObs(rb.range_m + rng.Normal(0.0, 0.05),
-                                     WrapAngle(rb.bearing_rad + rng.Normal(0.0, 0.01))));
+      const Eigen::Vector2d e = testing::NormalVector2(rng, 0.05, 0.01);
+      scan.push_back(RangeBearingObs(rb.range_m + e.x(), WrapAngle(rb.bearing_rad + e.y())));
     }
     d.scans.push_back(scan);
     if (k == steps) break;
     truth = OdometryModel().Move(truth, step, 0.0);
     // Within the odometry model's default noise (4 cm, 0.01° a step).
-    d.controls.push_back(Odo(step[0] + rng.Normal(0.0, 0.03), rng.Normal(0.0, 0.03),
-                             step[2] + rng.Normal(0.0, 1.5e-4)));
+    const Eigen::Vector3d e = testing::NormalVector3(rng, 0.03, 0.03, 1.5e-4);
+    d.controls.push_back(Odo(step[0] + e.x(), e.y(), step[2] + e.z()));
   }
   return d;
 }

@@ -11,6 +11,7 @@
 #include "slamkit/filters/features/feature_ekf_slam.hpp"
 #include "slamkit/filters/features/line_landmark_model.hpp"
 #include "slamkit/models/odometry.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -45,7 +46,7 @@ TEST(LineLandmarkModel, PredictJacobiansMatchCentralDifferencesThroughTheBlockEk
   int flipped = 0, tested = 0;
   while (tested < 200) {
     const Eigen::Vector3d x = testing::RandomPose(rng, 5.0).vector();
-    Eigen::Vector2d l(rng.Uniform(0.3, 6.0), rng.Uniform(-kPi, kPi));
+    Eigen::Vector2d l = testing::UniformVector2(rng, 0.3, 6.0, -kPi, kPi);
     if (tested % 4 == 0) l[1] = WrapLineAngle(kPi - rng.Uniform(-0.01, 0.01));
     const double rho_robot = l[0] - x[0] * std::cos(l[1]) - x[1] * std::sin(l[1]);
     if (std::abs(rho_robot) < 0.3) continue;

@@ -8,6 +8,7 @@
 #include "slamkit/filters/grid/scan_matcher.hpp"
 #include "slamkit/filters/particles/resampling.hpp"
 #include "slamkit/sim/laser_sim.hpp"
+#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {
@@ -77,10 +78,10 @@ TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
     ScanMatcherParams params;
     params.search_cells = window;
     for (int k = 0; k < 200; ++k) {
-      const Pose2 truth(rng.Uniform(-6, 6), rng.Uniform(-4, 4), rng.Uniform(-M_PI, M_PI));
+      const Pose2 truth(testing::UniformVector3(rng, {-6, -4, -M_PI}, {6, 4, M_PI}));
       const ScanPoints points = PrepareScan(RoomScan(truth), 30.0, params);
       const Pose2 pose =
-          truth.Compose(Pose2(rng.Normal(0, 0.05), rng.Normal(0, 0.05), rng.Normal(0, 0.02)));
+          truth.Compose(Pose2(testing::NormalVector3(rng, 0.05, 0.05, 0.02)));
       const MatchQuality got = EvaluatePose(grid, points, pose, params);
       const MatchQuality want = ReferenceEvaluate(grid, points, pose, params);
       ASSERT_EQ(got.matched, want.matched) << "window " << window << ", pose " << k;

@@ -19,7 +19,8 @@ std::vector<double> DrawAll(std::uint64_t seed, int threads) {
   for (int t = 0; t < kSteps; ++t) {
     tbb::parallel_for(0, kParticles, [&](int k) {
       Rng rng = streams.ForParticle(t, k);
-      out[t * kParticles + k] = rng.Normal() + rng.Uniform();
+      const double normal = rng.Normal();
+      out[t * kParticles + k] = normal + rng.Uniform();
     });
   }
   return out;

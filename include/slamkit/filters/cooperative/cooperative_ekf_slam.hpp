@@ -99,11 +99,14 @@ class CooperativeEkfSlam {
   int NumLandmarks() const { return landmarks_.size(); }
   LandmarkMap Map() const;
   int StateSize() const { return ekf_.StateSize(); }
-  // The v-v sightings applied and gated out, and the extended observations made, since Reset().
+  // Since Reset(): the v-v sightings applied and gated out, the extended observations made, and
+  // the landmark sightings (local or extended) that updated a landmark or were dropped by the gate.
   struct Counts {
     long vehicle_updates = 0;
     long vehicle_gated = 0;
     long extended = 0;
+    long landmark_updates = 0;
+    long landmark_dropped = 0;
   };
   const Counts& counts() const { return counts_; }
   const CooperativeEkfSlamParams& params() const { return params_; }
@@ -117,9 +120,10 @@ class CooperativeEkfSlam {
   int BlockOfVehicle(int vehicle) const;
   void ApplyVehicleSighting(int observer, const VehicleObservation& obs);
   std::vector<PointObservation> Extended(const FleetScan& scan) const;
-  std::vector<AssociationDecision> RunPipeline(int block,
+  std::vector<AssociationDecision> RunPipeline(int vehicle,
                                                std::span<const PointObservation> sightings);
   void CheckHealthAfterUpdate();
+  const ObservationModel& UpdateModel(int vehicle) const;
 
   CooperativeEkfSlamParams params_;
   int vehicles_;
@@ -131,6 +135,9 @@ class CooperativeEkfSlam {
   BlockEkf ekf_;
   int point_kind_ = -1;
   PointLandmarkModel point_model_;
+  // Per vehicle: the updates' model with params.ekf.jacobians == kFirstEstimates (its prior pose
+  // is that vehicle's latest prediction; every one records each landmark's first estimate).
+  std::vector<FirstEstimatesPointModel> fej_models_;
   PointLandmarkMap landmarks_;
   std::vector<int> block_of_;  // per vehicle: its pose block, -1 when not tracked
   std::vector<LatestSighting> latest_;  // kExtended: self's latest v-v sighting of each vehicle
