@@ -23,8 +23,15 @@ function(slamkit_target_options target)
     endif()
   endif()
   if(SLAMKIT_SANITIZE)
+    # UBSan without its four memory-access checks: ASan already stops at an access outside an
+    # object or to freed memory and at a null dereference, and Eigen's assertions (on in this
+    # build) check the alignment of its fixed-size objects. Those four made a typical test file
+    # compile 1.7 times slower (30 s against 18 s under clang 14); UBSan's own checks (integer
+    # overflow, shifts, float-to-int casts of NaN and out-of-range values, division by zero,
+    # invalid bool and enum loads, vptr, unreachable and missing returns) stay.
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
-                                             -fno-sanitize-recover=all)
+                                             -fno-sanitize-recover=all
+                                             -fno-sanitize=alignment,null,pointer-overflow,object-size)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
   if(SLAMKIT_BUILD_FUZZ)

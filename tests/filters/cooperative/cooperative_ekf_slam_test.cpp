@@ -304,6 +304,32 @@ TEST(CooperativeEkfSlam, TheSeedFormulationIsOverConfidentWhereOneSightingExtend
   EXPECT_GT(nees_extended, 2.0 * band.hi) << nees_extended;
 }
 
+// The counts in metrics.json: a sighting that updates its landmark, one the gate drops, and the
+// new landmark, which is neither.
+TEST(CooperativeEkfSlam, CountsLandmarkUpdatesAndGatedSightings) {
+  CooperativeEkfSlamParams p;
+  p.mode = CooperativeMode::kMono;
+  p.ekf.association_method = AssociationMethod::kKnown;
+  CooperativeEkfSlam f(p, 2, 0, std::make_unique<UnicycleModel>(kMotion),
+                       std::make_unique<RangeBearingModel>(WideSensor()),
+                       std::make_unique<KnownAssociation>(13.8));
+  const std::vector<Pose2> starts = {Pose2(), Pose2(5, 0, 0)};
+  f.Reset(starts);
+  FleetScan scan;
+  scan.vehicle = 0;
+  scan.landmarks.push_back({{10.0, 0.3}, kR, 7});
+  f.Update(scan);
+  scan.landmarks[0].z = {10.05, 0.301};
+  f.Update(scan);
+  scan.landmarks[0].z = {10.0, 0.8};  // 50 σ off in bearing
+  f.Update(scan);
+  scan.vehicle = 1;  // another vehicle's: Mono does not use it
+  f.Update(scan);
+  EXPECT_EQ(f.NumLandmarks(), 1);
+  EXPECT_EQ(f.counts().landmark_updates, 1);
+  EXPECT_EQ(f.counts().landmark_dropped, 1);
+}
+
 TEST(CooperativeEkfSlam, BadScansAreRejectedBeforeAnyChange) {
   CooperativeEkfSlam f = MakeFilter(CooperativeMode::kExact, 2, 0);
   const std::vector<Pose2> starts = {Pose2(), Pose2(5, 0, 0)};
