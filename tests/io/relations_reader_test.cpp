@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::Contains;
 
-const fs::path kCarmenDir = fs::path(SLAMKIT_DATASETS_DIR) / "carmen";
+const fs::path kRelationsCarmenDir = fs::path(SLAMKIT_DATASETS_DIR) / "carmen";
 
 class RelationsReader : public testing::TempDirTest {
  protected:
@@ -30,7 +30,7 @@ class RelationsReader : public testing::TempDirTest {
 };
 
 TEST_F(RelationsReader, ReadsIntelRelations) {
-  const std::vector<PoseRelation> relations = ReadRelations(kCarmenDir / "intel.relations");
+  const std::vector<PoseRelation> relations = ReadRelations(kRelationsCarmenDir / "intel.relations");
   ASSERT_EQ(relations.size(), 2984u);
   // 976052905.167303 976052911.885496 -0.056990 -0.128430 0.000000 0.000000 0.000000 -1.682210
   EXPECT_EQ(relations[0].t1_s, 976052905.167303);
@@ -41,7 +41,7 @@ TEST_F(RelationsReader, ReadsIntelRelations) {
   EXPECT_EQ(relations.back().delta.vector(), Eigen::Vector3d(0.881540, 0.001790, 0.075760));
 
   // Every relation timestamp is the timestamp of an intel.clf scan, as parsed by ReadCarmenLog.
-  const CarmenLog log = ReadCarmenLog(kCarmenDir / "intel.clf");
+  const CarmenLog log = ReadCarmenLog(kRelationsCarmenDir / "intel.clf");
   std::vector<double> scan_times;
   for (const LaserScan& scan : log.scans) scan_times.push_back(scan.t_s);
   std::sort(scan_times.begin(), scan_times.end());

@@ -27,7 +27,7 @@ double Clearance(const FloorPlan& plan, const Eigen::Vector2d& p) {
   return best;
 }
 
-class ShippedWorld : public testing::TestWithParam<std::string> {};
+class ShippedWorld : public ::testing::TestWithParam<std::string> {};
 
 // From every point of the route (and half-way between points) every ray meets a wall within
 // 60 m: the outline has no gap a ray (or the robot) could leave through. The route keeps 0.5 m
@@ -49,7 +49,7 @@ TEST_P(ShippedWorld, IsClosedAndItsRouteKeepsClear) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Plans, ShippedWorld, testing::Values("office", "corridor_loop"));
+INSTANTIATE_TEST_SUITE_P(Plans, ShippedWorld, ::testing::Values("office", "corridor_loop"));
 
 }  // namespace
 }  // namespace slamkit
