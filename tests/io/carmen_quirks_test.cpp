@@ -11,6 +11,7 @@
 
 #include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
+#include "common/pose_expect.hpp"
 
 namespace slamkit {
 namespace {
@@ -30,9 +31,7 @@ std::string Flaser(const Pose2& logged, const Pose2& odom, const std::string& t)
                      logged.theta(), odom.x(), odom.y(), odom.theta(), t);
 }
 
-void ExpectSamePose(const Pose2& actual, const Pose2& expected) {
-  EXPECT_EQ(actual.vector(), expected.vector());
-}
+using testing::ExpectSamePose;
 // The pose a fraction s of the way from a to b (the headings here are far from the ±π wrap).
 Pose2 Between(const Pose2& a, const Pose2& b, double s) {
   return Pose2(a.vector() + s * (b.vector() - a.vector()));

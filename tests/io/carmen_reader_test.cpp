@@ -17,6 +17,7 @@
 
 #include "common/input_error.hpp"
 #include "common/temp_dir.hpp"
+#include "common/pose_expect.hpp"
 
 namespace slamkit {
 namespace {
@@ -44,7 +45,7 @@ void WriteGzip(const fs::path& path, const std::string& text) {
   ASSERT_EQ(gzclose(file), Z_OK);
 }
 
-void ExpectSamePose(const Pose2& a, const Pose2& b) { EXPECT_EQ(a.vector(), b.vector()); }
+using testing::ExpectSamePose;
 
 class CarmenReader : public testing::TempDirTest {
  protected:

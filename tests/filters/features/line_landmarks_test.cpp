@@ -17,7 +17,7 @@ namespace slamkit {
 namespace {
 
 using testing::MaxAbsDiff;
-constexpr double kPi = std::numbers::pi;
+constexpr double kLinePi = std::numbers::pi;
 
 // A BlockEkf holding pose `x` and line `l` (blocks 0 and 1), for the model to read.
 struct PoseAndLine {
@@ -46,8 +46,8 @@ TEST(LineLandmarkModel, PredictJacobiansMatchCentralDifferencesThroughTheBlockEk
   int flipped = 0, tested = 0;
   while (tested < 200) {
     const Eigen::Vector3d x = testing::RandomPose(rng, 5.0).vector();
-    Eigen::Vector2d l = testing::UniformVector2(rng, 0.3, 6.0, -kPi, kPi);
-    if (tested % 4 == 0) l[1] = WrapLineAngle(kPi - rng.Uniform(-0.01, 0.01));
+    Eigen::Vector2d l = testing::UniformVector2(rng, 0.3, 6.0, -kLinePi, kLinePi);
+    if (tested % 4 == 0) l[1] = WrapLineAngle(kLinePi - rng.Uniform(-0.01, 0.01));
     const double rho_robot = l[0] - x[0] * std::cos(l[1]) - x[1] * std::sin(l[1]);
     if (std::abs(rho_robot) < 0.3) continue;
     ++tested;
@@ -89,7 +89,7 @@ TEST(LineLandmarkModel, InnovationWrapsAlphaAndGateRejectsLinesThroughTheRobot) 
   PoseAndLine far(Eigen::Vector3d(0.0, 0.0, 0.0), Eigen::Vector2d(1.1, 0.0));
   EXPECT_TRUE(model.Gate(far.ekf, blocks));
   const BlockVector nu =
-      model.Innovation(LineVector({2.0, kPi - 0.01}), LineVector({2.1, -kPi + 0.01}));
+      model.Innovation(LineVector({2.0, kLinePi - 0.01}), LineVector({2.1, -kLinePi + 0.01}));
   EXPECT_NEAR(nu[0], -0.1, 1e-12);
   EXPECT_NEAR(nu[1], -0.02, 1e-12);
 }
@@ -127,7 +127,7 @@ TEST(LineLandmarkModel, UpdateThatMakesRhoNegativeIsNormalised) {
   ASSERT_LT(x1[3], -0.2) << "the update itself must push ρ below zero";
   const Eigen::Matrix<double, 5, 1> t(1, 1, 1, -1, 1);
   x1[3] = -x1[3];
-  x1[4] = WrapLineAngle(x1[4] + kPi);
+  x1[4] = WrapLineAngle(x1[4] + kLinePi);
   P1 = t.asDiagonal() * P1 * t.asDiagonal();
 
   EXPECT_GE(ekf.Mean(line)[0], 0.0);
@@ -157,7 +157,7 @@ FeatureEkfSlam MakeSlam() {
 TEST(FeatureEkfSlam, TwoCollinearWallsFiveMetresApartAreTwoLandmarks) {
   FeatureEkfSlam slam = MakeSlam();
   ScanFeatures scan;
-  scan.lines = {Wall(2.0, kPi / 2, -7.5, -2.5), Wall(2.0, kPi / 2, 2.5, 7.5)};
+  scan.lines = {Wall(2.0, kLinePi / 2, -7.5, -2.5), Wall(2.0, kLinePi / 2, 2.5, 7.5)};
   FeatureDecisions d = slam.Update(scan);
   EXPECT_EQ(slam.NumLines(), 2);
   EXPECT_EQ(slam.NumActiveLines(), 2);
@@ -171,7 +171,7 @@ TEST(FeatureEkfSlam, TwoCollinearWallsFiveMetresApartAreTwoLandmarks) {
   EXPECT_EQ(slam.NumLines(), 2);
   // A sighting that continues the first wall (x in [2.5, 7.5]) within the margin extends it.
   ScanFeatures more;
-  more.lines = {Wall(2.0, kPi / 2, -2.8, -2.2)};  // x in [2.2, 2.8]
+  more.lines = {Wall(2.0, kLinePi / 2, -2.8, -2.2)};  // x in [2.2, 2.8]
   d = slam.Update(more);
   EXPECT_EQ(d.lines[0].kind, AssociationDecision::Kind::kMatched);
   EXPECT_EQ(slam.NumLines(), 2);
@@ -185,11 +185,11 @@ TEST(FeatureEkfSlam, TwoCollinearWallsFiveMetresApartAreTwoLandmarks) {
 TEST(FeatureEkfSlam, LandmarksOfOneWallAreFusedWhenTheirExtentsMeet) {
   FeatureEkfSlam slam = MakeSlam();
   ScanFeatures glimpses;
-  glimpses.lines = {Wall(2.0, kPi / 2, -3.0, -0.5), Wall(2.02, kPi / 2 + 0.005, 0.5, 3.0)};
+  glimpses.lines = {Wall(2.0, kLinePi / 2, -3.0, -0.5), Wall(2.02, kLinePi / 2 + 0.005, 0.5, 3.0)};
   slam.Update(glimpses);
   ASSERT_EQ(slam.NumActiveLines(), 2);
   ScanFeatures whole;
-  whole.lines = {Wall(2.01, kPi / 2, -2.0, 2.0)};
+  whole.lines = {Wall(2.01, kLinePi / 2, -2.0, 2.0)};
   const FeatureDecisions d = slam.Update(whole);
   EXPECT_EQ(d.lines[0].kind, AssociationDecision::Kind::kMatched);
   EXPECT_EQ(slam.NumActiveLines(), 1);
@@ -212,11 +212,11 @@ TEST(FeatureEkfSlam, UncertainParallelWallsAreNotFused) {
     return s;
   };
   ScanFeatures both;
-  both.lines = {uncertain(Wall(2.0, kPi / 2, -3.0, 3.0)), uncertain(Wall(2.6, kPi / 2, -2.0, 2.0))};
+  both.lines = {uncertain(Wall(2.0, kLinePi / 2, -3.0, 3.0)), uncertain(Wall(2.6, kLinePi / 2, -2.0, 2.0))};
   slam.Update(both);
   ASSERT_EQ(slam.NumActiveLines(), 2);
   ScanFeatures near_one;
-  near_one.lines = {uncertain(Wall(2.0, kPi / 2, -3.0, 3.0))};
+  near_one.lines = {uncertain(Wall(2.0, kLinePi / 2, -3.0, 3.0))};
   const FeatureDecisions d = slam.Update(near_one);
   ASSERT_EQ(d.lines[0].kind, AssociationDecision::Kind::kMatched);
   EXPECT_EQ(slam.NumActiveLines(), 2);
@@ -226,7 +226,7 @@ TEST(FeatureEkfSlam, UncertainParallelWallsAreNotFused) {
 TEST(FeatureEkfSlam, ShortSightingsStartNoLandmark) {
   FeatureEkfSlam slam = MakeSlam();
   ScanFeatures scan;
-  scan.lines = {Wall(2.0, kPi / 2, 0.0, 0.5)};
+  scan.lines = {Wall(2.0, kLinePi / 2, 0.0, 0.5)};
   const FeatureDecisions d = slam.Update(scan);
   EXPECT_EQ(d.lines[0].kind, AssociationDecision::Kind::kDropped);
   EXPECT_EQ(slam.NumLines(), 0);

@@ -13,9 +13,9 @@ namespace slamkit {
 namespace {
 
 // Dead reckoning with a fixed modelled cost: the exploration loop's SLAM at its simplest.
-class DeadReckoning final : public ExplorationSlam {
+class OdometryOnlySlam final : public ExplorationSlam {
  public:
-  explicit DeadReckoning(double cost_s) : cost_s_(cost_s) {}
+  explicit OdometryOnlySlam(double cost_s) : cost_s_(cost_s) {}
   void Step(const Pose2& odometry_delta, const LaserScan& scan) override {
     pose_ = pose_.Compose(odometry_delta);
     ++steps_;
@@ -43,11 +43,11 @@ FloorPlan Office() {
 }
 
 ExplorationRun Explore(double cost_s, std::uint64_t seed, double max_time_s,
-                       DeadReckoning* recorder = nullptr) {
+                       OdometryOnlySlam* recorder = nullptr) {
   ExplorationParams params;
   params.max_time_s = max_time_s;
-  DeadReckoning own(cost_s);
-  DeadReckoning& slam = recorder != nullptr ? *recorder : own;
+  OdometryOnlySlam own(cost_s);
+  OdometryOnlySlam& slam = recorder != nullptr ? *recorder : own;
   const Pose2 start(4.0, 15.0, 0.0);
   slam.Start(start);
   Rng rng(seed);
@@ -115,7 +115,7 @@ std::vector<Control> Replay(const ExplorationRun& run, const std::vector<LaserSc
 // with the true pose, perturbed, put where the scan could carry it, still the same commands;
 // with the estimate perturbed instead, other commands (so the replay does feed the explorer).
 TEST(RunExploration, ThePlannerNeverReadsTheTruth) {
-  DeadReckoning recorder(0.05);
+  OdometryOnlySlam recorder(0.05);
   recorder.KeepScans();
   const ExplorationRun run = Explore(0.05, 5, 90.0, &recorder);
   ASSERT_EQ(run.commands.size(), run.truth.size());

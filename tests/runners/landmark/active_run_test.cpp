@@ -13,12 +13,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ScenarioConfig Load(const char* name) {
+ScenarioConfig LoadShipped(const char* name) {
   return LoadScenario(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / name);
 }
 
 TEST(ActiveRun, RoutePlannerReproducesTheOpenLoopRun) {
-  const ScenarioConfig c = Load("swslam.yaml");
+  const ScenarioConfig c = LoadShipped("swslam.yaml");
   const LandmarkWorld world = MakeWorld(c.scenario.world);
   Rng noise(3), order(1003);
   const SimRun sim = Simulate(c.scenario, world, noise, order);
