@@ -127,9 +127,6 @@ function(slamkit_test)
     add_dependencies(${name} slamkit)
   endif()
   slamkit_target_options(${name})
-  # Test files are small beside the gtest, Eigen and slamkit headers they parse: batches of 16
-  # parse those once for twice as many files as the libraries' batches of 8.
-  set_target_properties(${name} PROPERTIES UNITY_BUILD_BATCH_SIZE 16)
   include(GoogleTest)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
   if("slow" IN_LIST ARG_LABELS OR "release" IN_LIST ARG_LABELS)
