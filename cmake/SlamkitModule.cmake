@@ -25,10 +25,10 @@ function(slamkit_target_options target)
   if(SLAMKIT_SANITIZE)
     # UBSan without its memory-access checks: ASan already stops at an access outside an array
     # or object or to freed memory and at a null dereference, and Eigen's assertions (on in this
-    # build) check indices and the alignment of its fixed-size objects. Those checks made a
-    # typical test file compile 1.7 times slower (30 s against 18 s under clang 14); UBSan's own
-    # checks (integer overflow, shifts, float-to-int casts of NaN and out-of-range values,
-    # division by zero, invalid bool and enum loads, vptr, unreachable and missing returns) stay.
+    # build) check indices and the alignment of its fixed-size objects. They made a typical test
+    # file compile about 1.7 times slower under clang 14. UBSan's own checks (integer overflow,
+    # shifts, float-to-int casts of NaN and out-of-range values, division by zero, invalid bool
+    # and enum loads, vptr, unreachable and missing returns) stay.
     target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
       -fno-sanitize-recover=all
       -fno-sanitize=alignment,null,pointer-overflow,object-size,bounds)
@@ -84,8 +84,8 @@ endfunction()
 # slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...] [NEEDS_CLI]): one gtest binary registered
 # with ctest. The tests labelled `slow` or `release` are what scripts/test.sh builds and runs in
 # the Release tree (target slamkit_release_tests, ctest -L 'slow|release'); every test but the
-# slow ones runs in the sanitizer tree. Tests that run the `slamkit` program (NEEDS_CLI, and every test in tests/apps) see
-# its path as SLAMKIT_CLI.
+# slow ones runs in the sanitizer tree. Tests that run the `slamkit` program (NEEDS_CLI, and
+# every test in tests/apps) see its path as SLAMKIT_CLI.
 #
 # A test that cannot be built in this configuration is skipped with a message: one that needs
 # the CLI when SLAMKIT_BUILD_APPS=OFF, or one that links a disabled module (slamkit::report when

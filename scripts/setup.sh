@@ -50,7 +50,8 @@ build=build/$flavour
 # Configured afresh when the tree is new or was configured with other settings (an older
 # checkout's asan build was GCC's): the settings are kept beside the tree.
 settings="${env_args[*]} ${args[*]}"
-if [ ! -f "$build/build.ninja" ] || [ "$(cat "$build/setup-settings" 2>/dev/null)" != "$settings" ]; then
+previous=$(cat "$build/setup-settings" 2>/dev/null || true)
+if [ ! -f "$build/build.ninja" ] || [ "$previous" != "$settings" ]; then
   rm -rf "$build/CMakeCache.txt" "$build/CMakeFiles"
   env "${env_args[@]}" cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER_LAUNCHER=ccache \
     "${args[@]}"

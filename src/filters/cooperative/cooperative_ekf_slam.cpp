@@ -113,6 +113,8 @@ void CooperativeEkfSlam::Predict(int vehicle, const Control& u, double dt_s,
 }
 
 // SPEC S3: a v-v sighting relates two pose blocks; its identity is known (no association).
+// Linearised at the current estimates whatever params.ekf.jacobians says: first estimates cover
+// the motion and the landmark sightings only.
 void CooperativeEkfSlam::ApplyVehicleSighting(int observer, const VehicleObservation& obs) {
   const int a = block_of_[observer], b = block_of_[obs.target];
   if (a < 0 || b < 0) return;
