@@ -17,7 +17,7 @@
 #include <tbb/global_control.h>
 
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 

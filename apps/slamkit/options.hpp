@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/io/param_table.hpp"
 
 namespace slamkit::app {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/models/unicycle.hpp"
 

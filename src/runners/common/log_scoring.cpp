@@ -90,4 +90,12 @@ double PeakRssMib() {
   return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
 }
 
+nlohmann::json HeadingDriftJson(const HeadingDriftFit& fit, const HeadingDriftParams& params) {
+  return {{"fitted_rad_per_m", fit.drift_rad_per_m},
+          {"rms_before_rad", fit.rms_before_rad},
+          {"rms_after_rad", fit.rms_after_rad},
+          {"windows", fit.windows},
+          {"window_steps", params.window_steps}};
+}
+
 }  // namespace slamkit

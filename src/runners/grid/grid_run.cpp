@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "slamkit/io/error.hpp"
-#include "slamkit/runners/landmark/outputs.hpp"
 
 namespace slamkit {
 namespace {

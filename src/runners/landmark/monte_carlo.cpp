@@ -5,7 +5,7 @@
 
 #include "monte_carlo_batches.hpp"
 #include "slamkit/core/numerical_error.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/runners/landmark/landmark_run.hpp"
 

@@ -9,6 +9,7 @@
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/models/vehicle.hpp"
+#include "slamkit/runners/common/log_scoring.hpp"
 #include "slamkit/runners/landmark/isam_config.hpp"
 
 namespace slamkit {
@@ -185,14 +186,6 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
     metrics["smoothed_reference"] = {{"error", r.smoothed_reference_failure}};
   }
   return metrics;
-}
-
-nlohmann::json HeadingDriftJson(const HeadingDriftFit& fit, const HeadingDriftParams& params) {
-  return {{"fitted_rad_per_m", fit.drift_rad_per_m},
-          {"rms_before_rad", fit.rms_before_rad},
-          {"rms_after_rad", fit.rms_after_rad},
-          {"windows", fit.windows},
-          {"window_steps", params.window_steps}};
 }
 
 void WriteIsamOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,

@@ -14,13 +14,13 @@
 
 #include "common/landmark_inputs.hpp"
 #include "common/numeric_jacobian.hpp"
+#include "common/ordered_draws.hpp"
 #include "filters/dense_reference.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
 #include "slamkit/filters/ekf/observation_model.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
-#include "common/ordered_draws.hpp"
 
 namespace slamkit {
 namespace {

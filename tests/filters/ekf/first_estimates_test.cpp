@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/landmark_inputs.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 

@@ -10,7 +10,7 @@
 #include "common/synthetic_room.hpp"
 #include "filters/landmark_circuit.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/grid/rbpf_grid_slam.hpp"
 #include "slamkit/filters/particles/particle_set.hpp"
 #include "slamkit/models/relative_point.hpp"

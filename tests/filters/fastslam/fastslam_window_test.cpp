@@ -9,7 +9,7 @@
 
 #include "common/landmark_inputs.hpp"
 #include "slamkit/core/rng.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"

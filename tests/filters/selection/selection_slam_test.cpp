@@ -10,7 +10,7 @@
 #include "filters/landmark_circuit.hpp"
 #include "filters/selection_fixtures.hpp"
 #include "slamkit/core/angle.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/selection/selection_policies.hpp"
 
 namespace slamkit {

@@ -7,7 +7,7 @@
 
 #include "filters/dense_reference.hpp"
 #include "filters/selection_fixtures.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/selection/selection_policies.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"

@@ -8,7 +8,7 @@
 #include "slamkit/filters/association/data_association.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
-#include "slamkit/filters/ekf/update_pipeline.hpp"
+#include "slamkit/filters/ekf_slam/update_pipeline.hpp"
 #include "slamkit/filters/features/line_association.hpp"
 #include "slamkit/filters/features/line_landmark_model.hpp"
 #include "slamkit/models/point_sensor.hpp"

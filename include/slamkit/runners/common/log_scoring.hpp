@@ -12,6 +12,7 @@
 
 #include "slamkit/core/relation.hpp"
 #include "slamkit/core/trajectory.hpp"
+#include "slamkit/eval/heading_drift.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 
@@ -55,5 +56,8 @@ Trajectory OdometryTrajectory(const CarmenLog& log);
 
 // Peak resident memory of this process so far, in MiB.
 double PeakRssMib();
+
+// metrics.json's odometry_heading_drift of an iSAM or grid run.
+nlohmann::json HeadingDriftJson(const HeadingDriftFit& fit, const HeadingDriftParams& params);
 
 }  // namespace slamkit

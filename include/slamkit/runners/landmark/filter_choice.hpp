@@ -2,7 +2,7 @@
 
 #include <string_view>
 
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"
 #include "slamkit/runners/landmark/monte_carlo.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"

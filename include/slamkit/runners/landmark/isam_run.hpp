@@ -8,7 +8,7 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/heading_drift.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"
 #include "slamkit/io/isam_reader.hpp"
 #include "slamkit/maps/landmark_map.hpp"

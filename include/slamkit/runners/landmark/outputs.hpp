@@ -54,8 +54,6 @@ void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::js
 
 // metrics.json of an iSAM-log run: association_agreement, landmarks_mapped, wall_time_s, ...
 nlohmann::json IsamMetrics(const IsamRunResult& result, const IsamRunParams& params);
-// metrics.json's odometry_heading_drift of an iSAM or grid run.
-nlohmann::json HeadingDriftJson(const HeadingDriftFit& fit, const HeadingDriftParams& params);
 
 // Writes DIR/metrics.json, DIR/estimate.tum and DIR/map.csv.
 void WriteIsamOutputs(const std::filesystem::path& dir, const nlohmann::json& metrics,

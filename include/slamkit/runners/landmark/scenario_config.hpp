@@ -2,7 +2,7 @@
 
 #include <filesystem>
 
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/io/param_table.hpp"
 #include "slamkit/planning/swslam_planner.hpp"
 #include "slamkit/runners/landmark/fastslam_sampling.hpp"

@@ -2,7 +2,7 @@
 // landmarks, started and matched by the second robot. Against the dense textbook EKF and against
 // the same scans with the robots' blocks swapped.
 
-#include "slamkit/filters/ekf/update_pipeline.hpp"
+#include "slamkit/filters/ekf_slam/update_pipeline.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "filters/dense_reference.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
-#include "slamkit/filters/ekf/point_landmarks.hpp"
+#include "slamkit/filters/ekf_slam/point_landmarks.hpp"
 #include "slamkit/models/range_bearing.hpp"
 
 namespace slamkit {

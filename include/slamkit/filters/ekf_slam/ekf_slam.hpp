@@ -14,7 +14,7 @@
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/first_estimates.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
-#include "slamkit/filters/ekf/point_landmarks.hpp"
+#include "slamkit/filters/ekf_slam/point_landmarks.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/filters/selection/selection.hpp"
 #include "slamkit/maps/landmark_map.hpp"

@@ -1,4 +1,4 @@
-#include "slamkit/filters/ekf/update_pipeline.hpp"
+#include "slamkit/filters/ekf_slam/update_pipeline.hpp"
 
 #include <utility>
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "filters/landmark_circuit.hpp"
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 
 namespace slamkit {
 namespace {

@@ -1,4 +1,4 @@
-#include "slamkit/filters/ekf/ekf_slam.hpp"
+#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 
 #include <algorithm>
 #include <cmath>

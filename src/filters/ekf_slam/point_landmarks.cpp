@@ -1,4 +1,4 @@
-#include "slamkit/filters/ekf/point_landmarks.hpp"
+#include "slamkit/filters/ekf_slam/point_landmarks.hpp"
 
 #include <algorithm>
 

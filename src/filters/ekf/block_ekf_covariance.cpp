@@ -1,0 +1,150 @@
+// The parts of BlockEkf that read the current covariance (the stored triangle less the
+// deferred factor U Uᵀ) in fixed-size blocks: blocks, the innovation covariance and Mahalanobis
+// distances, and the deferred downdate itself.
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Cholesky>
+
+#include "block_dispatch.hpp"
+#include "slamkit/filters/ekf/block_ekf.hpp"
+
+namespace slamkit {
+
+using internal::WithDim;
+using internal::WithDims;
+
+template <int R, int C>
+Eigen::Matrix<double, R, C> BlockEkf::CurrentBlock(int r, int c) const {
+  Eigen::Matrix<double, R, C> block = P_.block<R, C>(r, c);
+  if constexpr (R == C) {
+    if (r == c) block = P_.block<R, C>(r, c).template selfadjointView<Eigen::Upper>();
+  }
+  if (m_ > 0) {
+    block.noalias() -= U_.block(r, 0, R, m_) * U_.block(c, 0, C, m_).transpose();
+  }
+  return block;
+}
+
+// Block (a, b) of the current covariance; the stored triangle holds whichever lies above.
+template <int R, int C>
+Eigen::Matrix<double, R, C> BlockEkf::CurrentBlockOf(int a, int b) const {
+  const int r = blocks_[a].offset, c = blocks_[b].offset;
+  if (r <= c) return CurrentBlock<R, C>(r, c);
+  return CurrentBlock<C, R>(c, r).transpose();
+}
+
+Eigen::MatrixXd BlockEkf::CovarianceBlock(int a, int b) const {
+  return WithDim(BlockDim(a), [&](auto R) {
+    return WithDim(BlockDim(b), [&](auto C) -> Eigen::MatrixXd {
+      return CurrentBlockOf<decltype(R)::value, decltype(C)::value>(a, b);
+    });
+  });
+}
+
+void BlockEkf::ApplyPendingDowndate() {
+  if (m_ == 0) return;
+  // Fixed blocks, whatever the thread count, so the sums and hence the bits never change.
+  constexpr int kBlock = 128;
+  const auto U = U_.topLeftCorner(n_, m_);
+  const int blocks = (n_ + kBlock - 1) / kBlock;
+  tbb::parallel_for(0, blocks, [&](int b) {
+    const int j0 = b * kBlock, w = std::min(kBlock, n_ - j0);
+    const auto U_j = U.middleRows(j0, w);
+    P_.block(0, j0, j0, w).noalias() -= U.topRows(j0) * U_j.transpose();
+    P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= U_j * U_j.transpose();
+  });
+  m_ = 0;
+  NormaliseBlocks();
+}
+
+// S of an observation of two blocks a and b given P_aa: the one expression both the generic
+// path and the association fast path evaluate, so that their distances agree bit for bit.
+template <int kZ, int kD0, int kD1>
+Eigen::Matrix<double, kZ, kZ> BlockEkf::TwoBlockS(const Eigen::Matrix<double, kD0, kD0>& P_00,
+                                                  int a, int b,
+                                                  const Eigen::Matrix<double, kZ, kD0>& J_0,
+                                                  const Eigen::Matrix<double, kZ, kD1>& J_1,
+                                                  const Eigen::Matrix<double, kZ, kZ>& R) const {
+  const Eigen::Matrix<double, kD0, kD1> P_01 = CurrentBlockOf<kD0, kD1>(a, b);
+  const Eigen::Matrix<double, kD1, kD1> P_11 = CurrentBlockOf<kD1, kD1>(b, b);
+  const Eigen::Matrix<double, kZ, kZ> cross = J_0 * P_01 * J_1.transpose();
+  return J_0 * P_00 * J_0.transpose() + cross + cross.transpose() +
+         J_1 * P_11 * J_1.transpose() + R;
+}
+
+// S = H P Hᵀ + R from the few covariance blocks H touches, O(1) in n.
+template <int kZ>
+Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearisation& obs) const {
+  using MatrixZ = Eigen::Matrix<double, kZ, kZ>;
+  const std::span<const BlockJacobian> H = obs.H.view();
+  const MatrixZ R = obs.R;
+  MatrixZ S = MatrixZ::Zero();
+  if (H.size() == 2) {
+    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+      constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
+      const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
+      const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
+      const Eigen::Matrix<double, kD0, kD0> P_00 = CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
+      S = TwoBlockS<kZ, kD0, kD1>(P_00, H[0].block, H[1].block, J_0, J_1, R);
+    });
+    return S;
+  }
+  for (const BlockJacobian& a : H) {
+    for (const BlockJacobian& b : H) {
+      S += a.J * CovarianceBlock(a.block, b.block) * b.J.transpose();
+    }
+  }
+  return S + R;
+}
+
+BlockMatrix BlockEkf::InnovationCovariance(const Linearisation& obs) const {
+  return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) -> BlockMatrix {
+    return InnovationCovarianceFixed<decltype(Z)::value>(obs);
+  });
+}
+
+Eigen::Matrix3d BlockEkf::PoseCovarianceOf(int block) const {
+  return CurrentBlockOf<3, 3>(block, block);
+}
+
+// Flattened: it runs for every landmark within reach of every observation, and out of line the
+// small products and the 2×2 LLT cost as much in calls as in arithmetic.
+__attribute__((flatten)) double BlockEkf::MahalanobisSquaredPosePoint(
+    const PosePointObservation& obs) const {
+  const Eigen::Matrix2d S =
+      TwoBlockS<2, 3, 2>(*obs.P_pose, obs.pose, obs.point, obs.J_pose, obs.J_point, *obs.R);
+  return obs.innovation.dot(S.llt().solve(obs.innovation));
+}
+
+double BlockEkf::MahalanobisSquared(const Linearisation& obs) const {
+  return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) {
+    constexpr int kZ = decltype(Z)::value;
+    const Eigen::Matrix<double, kZ, 1> nu = obs.innovation;
+    const Eigen::Matrix<double, kZ, kZ> S = InnovationCovarianceFixed<kZ>(obs);
+    return nu.dot(S.llt().solve(nu));
+  });
+}
+
+Eigen::MatrixXd BlockEkf::JointInnovationCovariance(std::span<const Linearisation> obs) const {
+  std::vector<int> start(obs.size() + 1, 0);
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    start[i + 1] = start[i] + static_cast<int>(obs[i].innovation.size());
+  }
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(start.back(), start.back());
+  for (std::size_t i = 0; i < obs.size(); ++i) {
+    for (std::size_t j = 0; j < obs.size(); ++j) {
+      auto S_ij = S.block(start[i], start[j], start[i + 1] - start[i], start[j + 1] - start[j]);
+      for (const BlockJacobian& a : obs[i].H.view()) {
+        for (const BlockJacobian& b : obs[j].H.view()) {
+          S_ij += a.J * CovarianceBlock(a.block, b.block) * b.J.transpose();
+        }
+      }
+      if (i == j) S_ij += obs[i].R;
+    }
+  }
+  return S;
+}
+
+
+}  // namespace slamkit
