@@ -91,6 +91,7 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
                             {"runs", params.runs},
                             {"seed", params.seed}};
   metrics.update(MonteCarloResultJson(mc));
+  metrics["params"] = ScenarioParamsJson(config);
   return metrics;
 }
 

@@ -133,6 +133,13 @@ void ReadScenarioWorld(const YAML::Node& yaml, const std::filesystem::path& path
                  world);
 }
 
+nlohmann::json ScenarioParamsJson(const ScenarioConfig& config) {
+  ScenarioConfig copy = config;
+  nlohmann::json j = config::ParamsJson(ScenarioParamTable(copy));
+  j["ekf"]["known_association"] = config.ekf.known_association();
+  return j;
+}
+
 ScenarioConfig LoadScenario(const std::filesystem::path& path) {
   const YAML::Node yaml = config::LoadYamlFile(path);
   ScenarioConfig config;

@@ -138,7 +138,8 @@ nlohmann::json StudyJson(const ScenarioConfig& config, const StudyResult& result
           {"seed", result.params.seed},
           {"particles", result.params.particles},
           {"sections_note", std::string(StudySectionsNote())},
-          {"methods", methods}};
+          {"methods", methods},
+          {"params", ScenarioParamsJson(config)}};
 }
 
 void WriteStudyOutputs(const std::filesystem::path& dir, const ScenarioConfig& config,

@@ -51,6 +51,21 @@ TEST(MonteCarloWriter, MetricsJsonIsTheSummaryPlusEveryRunInOrder) {
   fs::remove_all(dir);
 }
 
+// Issue 27, part 3: mc's and study's metrics.json echo the scenario through its table, so a
+// setting that reaches only FastSLAM (delayed sampling) shows in the output of a run that used it.
+TEST(MonteCarloMetrics, EchoesTheScenarioTableWithWhatTheConfigSet) {
+  ScenarioConfig c = LoadScenario(std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yaml");
+  c.fastslam.delayed_sampling = !c.fastslam.delayed_sampling;
+  c.ekf.association.gate_chi2 = 7.5;
+  MonteCarloParams params;
+  params.runs = 1;
+  const nlohmann::json params_json = MonteCarloMetrics(c, params, MonteCarloResult{})["params"];
+  EXPECT_EQ(params_json["fastslam"]["delayed_sampling"], c.fastslam.delayed_sampling);
+  EXPECT_EQ(params_json["ekf"]["gate_chi2"], 7.5);
+  EXPECT_EQ(params_json["ekf"]["known_association"], c.ekf.known_association());
+  EXPECT_EQ(params_json, ScenarioParamsJson(c));
+}
+
 TEST(MonteCarloWriter, AnUnfinishedWriterLeavesNoScratchFileAndNoMetrics) {
   const MonteCarloResult mc = SmallKeptResult(1);
   const fs::path dir = fs::temp_directory_path() / ("slamkit_outputs_u" + std::to_string(getpid()));

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include <nlohmann/json.hpp>
+
 #include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/io/param_table.hpp"
 #include "slamkit/planning/swslam_planner.hpp"
@@ -35,6 +37,8 @@ struct ScenarioConfig {
 // lists, the landmark file, the initial pose and `ekf.known_association` are Listed lines that
 // LoadScenario reads beside the table.
 config::ParamTable ScenarioParamTable(ScenarioConfig& config);
+// metrics.json's `params` of a run on a scenario: every line of its table, and the association.
+nlohmann::json ScenarioParamsJson(const ScenarioConfig& config);
 
 // The `world` and `ekf` sections' lines, for the other simulated configs (the cooperative one).
 void AddScenarioWorldLines(WorldSpec& w, config::ParamTable& t);
