@@ -6,28 +6,55 @@
 #include "slamkit/report/figures.hpp"
 
 namespace slamkit::app {
+namespace {
 
-void WriteCoopFigures(const std::filesystem::path& dir, const CoopStudyResult& r) {
+// Run 0 under one mode: each vehicle's path (solid) over its true path (dashed), the true
+// landmarks (black crosses) and each vehicle's map (circles in its colour; one map for central).
+SeriesFigureData PathsFigure(const CoopModeResult& run, const LandmarkWorld& landmarks) {
   SeriesFigureData paths;
-  paths.title = fmt::format("Paths ({}, run 0): true dashed", CoopModeName(r.modes.back().mode));
+  paths.title = fmt::format("{}: paths (true dashed), landmarks (true +, mapped o), run 0",
+                            CoopModeName(run.mode));
   paths.x_label = "x [m]";
   paths.y_label = "y [m]";
-  const CoopModeResult& last = r.modes.back().first_run;
-  for (std::size_t v = 0; v < last.vehicles.size(); ++v) {
-    Series truth{"", {}, {}, static_cast<int>(v), true};
-    Series estimate{fmt::format("vehicle {}", v), {}, {}, static_cast<int>(v), false};
-    for (const StampedPose& p : last.vehicles[v].truth) {
+  for (std::size_t v = 0; v < run.vehicles.size(); ++v) {
+    const CoopVehicleTrace& trace = run.vehicles[v];
+    const int colour = static_cast<int>(v);
+    Series truth{"", {}, {}, colour, true};
+    Series estimate{fmt::format("vehicle {}", v), {}, {}, colour, false};
+    for (const StampedPose& p : trace.truth) {
       truth.x.push_back(p.pose.x());
       truth.y.push_back(p.pose.y());
     }
-    for (const StampedPose& p : last.vehicles[v].estimate) {
+    for (const StampedPose& p : trace.estimate) {
       estimate.x.push_back(p.pose.x());
       estimate.y.push_back(p.pose.y());
     }
     paths.series.push_back(std::move(truth));
     paths.series.push_back(std::move(estimate));
+    if (run.mode == CoopMode::kCentral && v > 0) continue;  // every vehicle holds the same map
+    Series mapped{"", {}, {}, colour, false, 'o'};
+    for (const MappedLandmark& l : trace.map.landmarks) {
+      mapped.x.push_back(l.position_m.x());
+      mapped.y.push_back(l.position_m.y());
+    }
+    paths.series.push_back(std::move(mapped));
   }
-  WriteSeriesFigure(dir / "paths.png", paths);
+  Series true_landmarks{"true landmarks", {}, {}, 5, false, '+'};
+  for (const Landmark& l : landmarks.landmarks) {
+    true_landmarks.x.push_back(l.position_m.x());
+    true_landmarks.y.push_back(l.position_m.y());
+  }
+  paths.series.push_back(std::move(true_landmarks));
+  return paths;
+}
+
+}  // namespace
+
+void WriteCoopFigures(const std::filesystem::path& dir, const CoopStudyResult& r) {
+  for (const CoopModeSummary& m : r.modes) {
+    WriteSeriesFigure(dir / fmt::format("paths_{}.png", CoopModeName(m.mode)),
+                      PathsFigure(m.first_run, r.landmarks));
+  }
   SeriesFigureData cov;
   cov.title = fmt::format("Position covariance norm, mean over {} runs", r.runs);
   cov.x_label = "time [s]";

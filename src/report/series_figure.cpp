@@ -20,7 +20,9 @@ constexpr int kPaletteSize = sizeof(kPalette) / sizeof(kPalette[0]);
 
 std::string PenOf(const Series& s, int index) {
   const int colour = s.colour >= 0 ? s.colour : index;
-  return std::string(kPalette[colour % kPaletteSize]) + (s.dashed ? ";2" : "-2");
+  const std::string ink = kPalette[colour % kPaletteSize];
+  if (s.marker != 0) return ink + " " + s.marker;  // a blank line style: markers only
+  return ink + (s.dashed ? ";2" : "-2");
 }
 
 internal::Box SetSeriesRanges(mglGraph& gr, const SeriesFigureData& data) {

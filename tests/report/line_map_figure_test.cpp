@@ -129,5 +129,21 @@ TEST_F(LineMapFigure, SeriesFigureDrawsEachCurveAndChecksLengths) {
   EXPECT_THROW(WriteSeriesFigure(dir_ / "t.jpg", SeriesFigureData{}), std::invalid_argument);
 }
 
+// A series with a marker is its points alone: two far-apart landmarks ink a few pixels each,
+// where the same two points as a line ink the whole diagonal between them.
+TEST_F(LineMapFigure, SeriesWithAMarkerDrawsPointsWithoutALine) {
+  SeriesFigureData data;
+  data.width_px = 700;
+  data.height_px = 500;
+  data.series = {Series{"landmarks", {0.0, 10.0}, {0.0, 10.0}, 2, false, 'o'}};
+  WriteSeriesFigure(dir_ / "points.png", data);
+  const long points = CountPixels(ReadRgbaPng(dir_ / "points.png"), IsGreen);
+  data.series[0].marker = 0;
+  WriteSeriesFigure(dir_ / "line.png", data);
+  const long line = CountPixels(ReadRgbaPng(dir_ / "line.png"), IsGreen);
+  EXPECT_GT(points, 10);
+  EXPECT_LT(3 * points, line);
+}
+
 }  // namespace
 }  // namespace slamkit

@@ -65,6 +65,9 @@ struct Series {
   int colour = -1;     // index into a fixed palette (blue, red, green, magenta, cyan, black,
                        // grey; wraps); -1: the series' own index
   bool dashed = false;
+  // 0: a line through the points; else the points alone, each drawn as this MathGL marker
+  // ('o' circle, '+' plus, 'x' cross, 's' square, 'd' diamond), e.g. a map's landmarks.
+  char marker = 0;
 };
 
 // Curves over a common x axis with a legend (e.g. accumulated SLAM time per selection policy).

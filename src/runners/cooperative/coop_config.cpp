@@ -140,6 +140,13 @@ CoopConfig LoadCoopConfig(const std::filesystem::path& path) {
   ReadScenarioWorld(yaml, path, table, &c.scenario.world);
   ReadVehicles(config::TableSection(yaml, path.string(), table, ""), c.route, &c.scenario.vehicles);
   ReadDensity(config::TableSection(yaml, path.string(), table, "filter"), &c.filter);
+  // Without ids the known-id associator would make every sighting a new landmark.
+  if (!c.filter.known_association &&
+      c.filter.filter.ekf.association_method == AssociationMethod::kKnown) {
+    config::TableSection(yaml, path.string(), table, "filter")
+        .Fail("known_association", "is false, but ekf.association is known: set ekf.association "
+                                   "to nn, ml, gnn or jcbb");
+  }
   // The filters' sensors are the true ones: the same noise and range (a real log's are the
   // config's own statement of them).
   c.filter.sensor = c.scenario.sensor;

@@ -17,6 +17,9 @@ nlohmann::json VehicleJson(const CoopVehicleSummary& v, bool has_ir) {
                       {"anees_in_band", v.anees_in_band},
                       {"landmarks", v.landmarks},
                       {"map_rmse_m", v.map_rmse_m >= 0.0 ? nlohmann::json(v.map_rmse_m) : nullptr},
+                      {"association_agreement", v.association_agreement >= 0.0
+                                                    ? nlohmann::json(v.association_agreement)
+                                                    : nullptr},
                       {"position_cov_norm_final_m2",
                        v.position_cov_norm.empty() ? 0.0 : v.position_cov_norm.back()}};
   if (has_ir) {

@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <stdexcept>
+#include <utility>
 
 #include "coop_scoring.hpp"
+#include "slamkit/eval/errors.hpp"
 
 namespace slamkit {
 namespace {
@@ -22,6 +25,7 @@ struct Estimator {
   std::vector<double> time_s;
   std::vector<Control> control;  // the latest control of each vehicle (empty: none yet)
   std::vector<LandmarkId> landmark_truth;  // by landmark index: its creating sighting's truth
+  std::vector<std::pair<int, LandmarkId>> assigned;  // (landmark, true id) of each used sighting
   std::vector<double> last_record_s;
 };
 
@@ -37,6 +41,10 @@ Estimator MakeEstimator(const FleetLog& log, CoopMode mode, int self, const Coop
   CooperativeEkfSlamParams fp = p.filter;
   fp.mode = FilterModeOf(mode);
   if (p.known_association) fp.ekf.association_method = AssociationMethod::kKnown;
+  if (!p.known_association && fp.ekf.association_method == AssociationMethod::kKnown) {
+    // The sightings carry no ids then: every one would start a landmark.
+    throw std::invalid_argument("coop: known association is off but the associator is 'known'");
+  }
   Estimator e;
   std::unique_ptr<Associator> associator =
       p.known_association ? std::make_unique<KnownAssociation>(p.known_gate_chi2)
@@ -133,12 +141,28 @@ void Process(const FleetLog& log, const FleetTruth& truth, const std::vector<Lan
     *update_s += std::chrono::duration<double>(Clock::now() - start).count();
     ++out->scans;
     for (std::size_t k = 0; k < decisions.size(); ++k) {
+      if (decisions[k].kind == AssociationDecision::Kind::kDropped) continue;
+      const LandmarkId true_id = TrueId(log, true_ids, landmark_events[k]);
+      if (true_id != kNoLandmark) e.assigned.emplace_back(decisions[k].landmark, true_id);
       if (decisions[k].kind != AssociationDecision::Kind::kNew) continue;
       const auto l = static_cast<std::size_t>(decisions[k].landmark);
       if (e.landmark_truth.size() <= l) e.landmark_truth.resize(l + 1, kNoLandmark);
-      e.landmark_truth[l] = TrueId(log, true_ids, landmark_events[k]);
+      e.landmark_truth[l] = true_id;
     }
   }
+}
+
+// Among events of one time, the receiver's own first: its sensing at t is in hand before any
+// message about t can arrive. The seed's extended observations need it: vehicle b's shared scan
+// at t is extended through the receiver's own v-v sighting of b at t, which the log may list
+// after b's scan (the simulator lists vehicle 0 first, so vehicle 1 never extended a thing).
+void OwnEventsFirstAtEachTime(const FleetLog& log, int self, std::vector<int>* events) {
+  std::stable_sort(events->begin(), events->end(), [&](int a, int b) {
+    const FleetEvent& x = log.events[a];
+    const FleetEvent& y = log.events[b];
+    if (x.t_s != y.t_s) return x.t_s < y.t_s;
+    return x.vehicle == self && y.vehicle != self;
+  });
 }
 
 void AddCounts(const CooperativeEkfSlam::Counts& c, CooperativeEkfSlam::Counts* sum) {
@@ -189,6 +213,9 @@ CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
     } else {
       Rng rng(message_seed + static_cast<std::uint64_t>(self));
       events = DeliveredEvents(log, self, params.messages, rng);
+      // Only EO looks up an earlier measurement (its latest v-v sighting); the exact mode uses
+      // each one once on its own blocks, in the log's order, as the central filter does.
+      if (mode == CoopMode::kExtended) OwnEventsFirstAtEachTime(log, self, &events);
     }
     std::vector<char> recorded(log.vehicles, self < 0 ? 1 : 0);
     if (self >= 0) recorded[self] = 1;
@@ -196,9 +223,15 @@ CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
     e.filter->CheckOutputHealth();
     AddCounts(e.filter->counts(), &out.counts);
     const LandmarkMap map = e.filter->Map();
+    const double agreement =
+        e.assigned.empty()
+            ? -1.0
+            : AssociationAgreement(e.assigned, static_cast<int>(e.assigned.size())).share;
     for (int v = 0; v < log.vehicles; ++v) {
       if (!recorded[v]) continue;
       out.vehicles[v].map = map;
+      out.vehicles[v].association_agreement = agreement;
+      out.vehicles[v].counts = e.filter->counts();
       Summarise(out.vehicles[v], truth.world, e.landmark_truth);
     }
   }

@@ -13,7 +13,8 @@ namespace {
 
 struct VehicleSums {
   double position_sq = 0.0, heading_sq = 0.0, nees = 0.0, map = 0.0, landmarks = 0.0;
-  int maps = 0, nees_runs = 0;
+  double agreement = 0.0;
+  int maps = 0, nees_runs = 0, agreements = 0;
   std::vector<double> cov_norm, nees_per_record;
   std::vector<int> nees_count;  // per record, the runs where it is defined
 };
@@ -29,6 +30,10 @@ void Accumulate(const CoopVehicleTrace& trace, VehicleSums* s) {
   if (trace.map_rmse_m >= 0.0) {
     s->map += trace.map_rmse_m;
     ++s->maps;
+  }
+  if (trace.association_agreement >= 0.0) {
+    s->agreement += trace.association_agreement;
+    ++s->agreements;
   }
   const std::size_t n = s->cov_norm.empty() ? trace.position_cov_norm.size()
                                             : std::min(s->cov_norm.size(), trace.nees.size());
@@ -51,6 +56,7 @@ CoopVehicleSummary Summary(const VehicleSums& s, int runs, const ChiSquareBand& 
   v.anees = s.nees_runs > 0 ? s.nees / s.nees_runs : std::numeric_limits<double>::quiet_NaN();
   v.map_rmse_m = s.maps > 0 ? s.map / s.maps : -1.0;
   v.landmarks = s.landmarks / runs;
+  v.association_agreement = s.agreements > 0 ? s.agreement / s.agreements : -1.0;
   // The band is that of a mean over all the runs: records where fewer have a NEES are left out.
   int inside = 0, counted = 0;
   for (std::size_t k = 0; k < s.cov_norm.size(); ++k) {
@@ -104,6 +110,7 @@ CoopStudyResult Study(int runs, int vehicles, const std::vector<CoopMode>& modes
   result.modes.resize(modes.size());
   for (int r = 0; r < runs; ++r) {
     const auto [log, truth, ids] = fleet_of(r);
+    if (r == 0) result.landmarks = truth.world;
     for (std::size_t m = 0; m < modes.size(); ++m) {
       CoopModeResult one = RunCoopMode(log, truth, ids, modes[m], params, seed + r);
       for (int v = 0; v < vehicles; ++v) Accumulate(one.vehicles[v], &sums[m][v]);

@@ -66,6 +66,12 @@ struct CoopVehicleTrace {
   // alignment, over the landmarks whose true id is known (-1: no landmark to compare).
   LandmarkMap map;
   double map_rmse_m = -1.0;
+  // The share of the filter's landmark sightings (matched or new) that fall on a one-to-one
+  // pairing of its landmarks with the true ids (eval's AssociationAgreement), over the sightings
+  // whose true id is known; -1 when none is. 1 with known association unless the gate dropped a
+  // landmark's first sighting.
+  double association_agreement = -1.0;
+  CooperativeEkfSlam::Counts counts;  // its filter's (the central filter's for kCentral)
 };
 
 struct CoopModeResult {

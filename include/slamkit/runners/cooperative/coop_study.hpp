@@ -19,6 +19,7 @@ struct CoopVehicleSummary {
   double anees_in_band = 0.0;    // share of the records whose mean over runs is in `band`
   double map_rmse_m = -1.0;      // mean over the runs that have one
   double landmarks = 0.0;        // mean size of the vehicle's map
+  double association_agreement = -1.0;  // mean over the runs that have one (CoopVehicleTrace)
   std::vector<double> t_s;                // the records' times (run 0's)
   std::vector<double> position_cov_norm;  // per record, the mean over runs of ‖C_pp‖
   std::vector<double> anees_per_record;
@@ -41,6 +42,7 @@ struct CoopModeSummary {
 struct CoopStudyResult {
   int runs = 0;
   std::vector<CoopModeSummary> modes;
+  LandmarkWorld landmarks;  // run 0's true landmarks (the figures'); empty when not known
   double wall_time_s = 0.0;
 };
 
