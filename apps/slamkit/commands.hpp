@@ -16,5 +16,6 @@ void RegisterExplore(CLI::App& app, int& exit_code);
 void RegisterFeatures(CLI::App& app, int& exit_code);
 void RegisterStudy(CLI::App& app, int& exit_code);
 void RegisterCoop(CLI::App& app, int& exit_code);
+void RegisterMapDiff(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app
