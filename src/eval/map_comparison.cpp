@@ -35,13 +35,15 @@ long CellOffset(double from_m, double to_m, double resolution_m) {
   const double cells = (to_m - from_m) / resolution_m;
   const double whole = std::round(cells);
   if (std::abs(cells - whole) > 1e-6) {
-    throw std::invalid_argument("map comparison: the origins are not a whole number of cells apart");
+    throw std::invalid_argument(
+        "map comparison: the origins are not a whole number of cells apart");
   }
   return static_cast<long>(whole);
 }
 
 void CheckInputs(const OccupancyImage& a, const OccupancyImage& b, const MapComparisonParams& p) {
-  if (!(a.resolution_m > 0.0) || std::abs(a.resolution_m - b.resolution_m) > 1e-9 * a.resolution_m) {
+  const double r = a.resolution_m;
+  if (!(r > 0.0) || std::abs(r - b.resolution_m) > 1e-9 * r) {
     throw std::invalid_argument("map comparison: the maps' resolutions differ");
   }
   if (!(0.0 <= p.free_threshold && p.free_threshold < p.occupied_threshold &&

@@ -25,7 +25,8 @@ fs::path WriteMap(const fs::path& dir, int w, int h, int wall, double origin_x =
   for (int x = 0; x < wall; ++x) pixels[static_cast<std::size_t>((h - 1) * w + x)] = 0;
   std::ofstream pgm(dir / "map.pgm", std::ios::binary);
   pgm << "P5\n" << w << " " << h << "\n255\n";
-  pgm.write(reinterpret_cast<const char*>(pixels.data()), static_cast<std::streamsize>(pixels.size()));
+  pgm.write(reinterpret_cast<const char*>(pixels.data()),
+            static_cast<std::streamsize>(pixels.size()));
   std::ofstream(dir / "map.yaml") << "image: map.pgm\nresolution: " << resolution << "\norigin: ["
                                   << origin_x << ", 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\n"
                                   << "free_thresh: 0.196\n";
