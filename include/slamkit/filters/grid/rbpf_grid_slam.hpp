@@ -178,6 +178,9 @@ class RbpfGridSlam final : public GridSlam {
 
   int particle_count() const { return particles_.size(); }
   const GridParticle& particle(int i) const { return particles_[i]; }
+  // Which particle of the previous update particle i was copied from by this update's
+  // resampling (i itself when it did not resample).
+  int particle_source(int i) const { return particles_.source(i); }
   // Sets particle i's second map layer (kept by its copies at resampling). Not during ProcessScan.
   void SetSecondLayer(int i, std::shared_ptr<const OccupancyGrid> layer);
 
