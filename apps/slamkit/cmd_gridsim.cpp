@@ -2,7 +2,6 @@
 // (SPEC S4's square maze by default, a map_server map or a walls file), compared with the true
 // path.
 #include <algorithm>
-#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -16,10 +15,9 @@
 #include "grid_outputs.hpp"
 #include "options.hpp"
 #include "output_dir.hpp"
+#include "plan_input.hpp"
 #include "progress.hpp"
 #include "slamkit/io/error.hpp"
-#include "slamkit/io/floor_plan_reader.hpp"
-#include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/waypoints_reader.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/runners/grid/grid_sim.hpp"
@@ -42,15 +40,6 @@ struct GridSimOptions {
   GridSlamConfig slam;
 };
 
-// A plan file is a map_server map when its name says YAML, else a walls file: a plan that is
-// neither fails on its first line with the walls format's message.
-bool IsMapServerMap(const std::filesystem::path& plan) {
-  std::string ext = plan.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".yaml" || ext == ".yml";
-}
-
 // The floor plan and the route the options name; errors (files, a missing route) come here,
 // before the long run.
 std::pair<FloorPlan, RouteParams> PlanAndRoute(const GridSimOptions& o) {
@@ -59,9 +48,7 @@ std::pair<FloorPlan, RouteParams> PlanAndRoute(const GridSimOptions& o) {
     throw InputError(fmt::format("--plan {}: a plan file needs its route: --waypoints FILE "
                                  "(one `x y` line per waypoint, in metres)", o.plan));
   }
-  FloorPlan plan = maze                     ? MakeSquareMaze()
-                   : IsMapServerMap(o.plan) ? FloorPlanFromOccupancy(ReadOccupancyImage(o.plan))
-                                            : FloorPlan{ReadFloorPlanFile(o.plan)};
+  FloorPlan plan = ReadPlan(o.plan);
   // A given route turns at its waypoints as tightly as the maze route does.
   RouteParams route = MazeRoute({}, o.sim.route.loops);
   if (!o.waypoints.empty()) route.waypoints_m = ReadWaypoints(o.waypoints);

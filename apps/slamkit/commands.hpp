@@ -11,6 +11,7 @@ void RegisterDemo(CLI::App& app, int& exit_code);
 void RegisterRun(CLI::App& app, int& exit_code);
 void RegisterGrid(CLI::App& app, int& exit_code);
 void RegisterGridSim(CLI::App& app, int& exit_code);
+void RegisterGridExplore(CLI::App& app, int& exit_code);
 void RegisterSuite(CLI::App& app, int& exit_code);
 void RegisterExplore(CLI::App& app, int& exit_code);
 void RegisterFeatures(CLI::App& app, int& exit_code);

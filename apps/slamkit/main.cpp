@@ -40,6 +40,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterRun(app, exit_code);
   slamkit::app::RegisterGrid(app, exit_code);
   slamkit::app::RegisterGridSim(app, exit_code);
+  slamkit::app::RegisterGridExplore(app, exit_code);
   slamkit::app::RegisterSuite(app, exit_code);
   slamkit::app::RegisterExplore(app, exit_code);
   slamkit::app::RegisterFeatures(app, exit_code);

@@ -40,6 +40,7 @@ constexpr double kPixelsPerBlock = 1.0;
 // Depths: MathGL draws larger z in front. Plot without z draws at the bottom of the range.
 constexpr double kUnknownZ = -1.0;
 constexpr double kKnownZ = -0.9;
+constexpr double kOverlayZ = -0.8;
 constexpr double kSecondaryPathZ = 0.3;
 constexpr double kPathZ = 0.5;
 constexpr double kFrameZ = 0.8;
@@ -51,6 +52,10 @@ const char* CellColour(MapCell cell) {
     case MapCell::kUnknown: break;
   }
   return "{xBEBEBE}";
+}
+// An overlay's cells (predicted structure): light and dark orange.
+const char* OverlayColour(MapCell cell) {
+  return cell == MapCell::kOccupied ? "{xD95F02}" : "{xFDD9B5}";
 }
 constexpr const char* kPathPen = "b-2";
 constexpr const char* kSecondaryPathPen = "{r6}-1";
@@ -144,15 +149,21 @@ void DrawFrame(mglGraph& gr, const Box& box, double px_m) {
   FillRect(gr, b.x - px_m, a.y, b.x, b.y, kFrameZ, "k");
 }
 
-// Unknown everywhere in the box, then the known rectangles over it.
-void DrawRaster(mglGraph& gr, const BlockRaster& raster, const Box& box) {
-  FillRect(gr, box.lo.x, box.lo.y, box.hi.x, box.hi.y, kUnknownZ, CellColour(MapCell::kUnknown));
+// The known rectangles of a raster at depth z, coloured by `colour`.
+void DrawKnown(mglGraph& gr, const BlockRaster& raster, double z,
+               const char* (*colour)(MapCell)) {
   const double s = raster.block_m;
   const Eigen::Vector2d& o = raster.origin_m;
   for (const BlockRect& r : internal::MergedRects(raster, MapCell::kUnknown)) {
-    FillRect(gr, o.x() + r.i0 * s, o.y() + r.j0 * s, o.x() + r.i1 * s, o.y() + r.j1 * s, kKnownZ,
-             CellColour(r.cell));
+    FillRect(gr, o.x() + r.i0 * s, o.y() + r.j0 * s, o.x() + r.i1 * s, o.y() + r.j1 * s, z,
+             colour(r.cell));
   }
+}
+
+// Unknown everywhere in the box, then the known rectangles over it.
+void DrawRaster(mglGraph& gr, const BlockRaster& raster, const Box& box) {
+  FillRect(gr, box.lo.x, box.lo.y, box.hi.x, box.hi.y, kUnknownZ, CellColour(MapCell::kUnknown));
+  DrawKnown(gr, raster, kKnownZ, CellColour);
 }
 
 void DrawPath(mglGraph& gr, const Trajectory& path, double z, const char* pen) {
@@ -219,6 +230,11 @@ void DrawMapPanel(mglGraph& gr, const MapSheetPanel& panel, double box_w_px, dou
     add(internal::PixelCorner(map, known.col0, known.row0));
     add(internal::PixelCorner(map, known.col1, known.row1));
   }
+  const PixelBox overlay_known = internal::KnownPixels(panel.overlay);
+  if (!overlay_known.empty()) {
+    add(internal::PixelCorner(panel.overlay, overlay_known.col0, overlay_known.row0));
+    add(internal::PixelCorner(panel.overlay, overlay_known.col1, overlay_known.row1));
+  }
   for (const StampedPose& p : panel.path) add(p.pose.translation());
   if (known.empty() && panel.path.empty()) {  // all unknown: show the whole image
     add(map.origin_m);
@@ -229,6 +245,10 @@ void DrawMapPanel(mglGraph& gr, const MapSheetPanel& panel, double box_w_px, dou
   const int block =
       std::max(1, static_cast<int>(std::ceil(px_m * kPixelsPerBlock / map.resolution_m - 1e-9)));
   DrawRaster(gr, internal::Downsample(map, known, block), box);
+  if (!overlay_known.empty()) {
+    DrawKnown(gr, internal::Downsample(panel.overlay, overlay_known, block), kOverlayZ,
+              OverlayColour);
+  }
   DrawPath(gr, panel.secondary_path, kSecondaryPathZ, kSecondaryPathPen);
   DrawPath(gr, panel.path, kPathZ, kPathPen);
   DrawFrame(gr, box, px_m);
@@ -253,7 +273,10 @@ void WriteMapContactSheet(const std::filesystem::path& path, const MapSheetData&
   Layout layout = ChooseLayout(data);
   const internal::ImageFormat format =
       internal::CheckedFormat(path, layout.width_px, layout.height_px);
-  for (const MapSheetPanel& panel : data.panels) internal::CheckImage(panel.map);
+  for (const MapSheetPanel& panel : data.panels) {
+    internal::CheckImage(panel.map);
+    if (!panel.overlay.pixels.empty()) internal::CheckImage(panel.overlay);
+  }
   internal::SuppressMglWarnings();
   mglGraph gr(0, layout.width_px, layout.height_px);
   gr.SetFontSize(kFontSize);

@@ -22,7 +22,9 @@ struct StructurePredictorParams {
   double region_diameter_m = 10.0;
   // The target control point is the corner nearest f within this; none: no prediction (seed
   // III-A: "we search for the nearest corner feature as the control point in a preset range").
-  double control_point_range_m = 3.0;
+  // d / 2: any corner of S_f. A frontier lies where the laser's view ends, typically 3.5–5 m
+  // from the nearest corner seen in SPEC S4's maze, so 3 m left most targets without one.
+  double control_point_range_m = 5.0;
   // The search's budget: candidate corners within this of f, at most max_candidates of them,
   // nearest the control point first (the seed's "fixed searching bound").
   double search_radius_m = 30.0;

@@ -109,6 +109,9 @@ struct MapSheetPanel {
   Trajectory path;            // the estimated path, world frame, drawn over the map
   Trajectory secondary_path;  // drawn dimmer (e.g. raw odometry); empty: not drawn
   bool failed = false;        // a run that produced no map: the title and "no map" only
+  // Drawn over the map in orange where it is known (e.g. P-SLAM's predicted cells; its own
+  // extent, same resolution as `map`); empty: none.
+  OccupancyImage overlay = {};
 };
 
 struct MapSheetData {

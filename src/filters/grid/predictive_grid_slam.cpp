@@ -77,6 +77,9 @@ void PredictiveGridSlam::Submit(std::optional<Eigen::Vector2d> target_m, double 
                                      best.pose, target_m};
   HypothesisRecord record;
   record.request_scan = scans_;
+  record.hypothesis.id = request.id;
+  record.hypothesis.t_s = t_s;
+  if (target_m) record.hypothesis.target_m = *target_m;
   records_.push_back(std::move(record));
   in_flight_record_ = request.id;
   in_flight_ = std::async(std::launch::async, [predictor = predictor_, request]() {
