@@ -35,7 +35,24 @@ struct GridOptions {
   bool seed_given = false;       // --seed and --particles override --config
   bool particles_given = false;
   GridSlamConfig slam;  // the filter options' values
+  std::string predict = "off";
+  std::string recovery = "on";
+  GridPredictionConfig prediction;
 };
+
+// P-SLAM's keys in metrics.json, when it ran.
+void AddPredictionMetrics(const PredictiveRunResult& r, const GridPredictionConfig& p,
+                          nlohmann::json& metrics) {
+  metrics["predict"] = true;
+  metrics["recovery"] = p.prediction.recovery;
+  metrics["similarity_threshold"] = p.predictor.similarity_threshold;
+  metrics["prediction_delay_scans"] = p.prediction.deterministic_delay_scans;
+  metrics["hypotheses"] = r.hypotheses.size();
+  metrics["hypotheses_by_fate"] = HypothesisFateCounts(r.hypotheses);
+  long cells = 0;
+  ForEachKnownCell(r.predicted, [&](const CellIndex&, OccupancyGrid::CellValue) { ++cells; });
+  metrics["predicted_area_m2"] = cells * r.predicted.resolution() * r.predicted.resolution();
+}
 
 // The filter's parameters (the options, or --config with --seed and --particles over it), and
 // the frame: the log's odometry frame with --frame odometry, else `odometry` is moved to start at
@@ -81,8 +98,10 @@ int RunGridCommand(const GridOptions& o) {
   OutputDir output(o.out);
 
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
-  const GridRunResult result =
-      RunGridSlam(log, params, [progress](int done, int) { progress->Update(done); });
+  const auto report = [progress](int done, int) { progress->Update(done); };
+  std::optional<PredictiveRunResult> predictive;
+  if (o.predict == "on") predictive = RunPredictiveGridSlam(log, params, o.prediction, report);
+  const GridRunResult result = predictive ? predictive->run : RunGridSlam(log, params, report);
   const LogEvaluation eval =
       EvaluateOnLog(result.trajectory, odometry, std::move(relations), reference,
                     ScoringOf(o.input));
@@ -95,7 +114,12 @@ int RunGridCommand(const GridOptions& o) {
                 "readers, trajectory.txt keeps the log's\n",
                 o.input.log, TimestampProblem(result.trajectory), moved);
   }
-  WriteJson(dir / "metrics.json", RunMetrics(o, log, result, params, eval));
+  nlohmann::json metrics = RunMetrics(o, log, result, params, eval);
+  if (predictive) {
+    AddPredictionMetrics(*predictive, o.prediction, metrics);
+    WritePredictionOutputs(dir, result, predictive->hypotheses, predictive->predicted);
+  }
+  WriteJson(dir / "metrics.json", metrics);
   PrintGridRun(o.input.log, result, params.rbpf.particles);
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
@@ -131,7 +155,21 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
       ->default_str("origin");
   cmd->add_option("--threads", o->threads, "worker threads (0: all the CPUs this process may use)")
       ->check(CLI::Range(0, 1024));
+  cmd->add_option("--predict", o->predict,
+                  "P-SLAM's structure prediction (SPEC S4): hypotheses.csv, predicted.pgm, "
+                  "map_predicted.png")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  cmd->add_option("--recovery", o->recovery, "with --predict on: drop predictions the scans do "
+                  "not support (Eq. 23)")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
+  cmd->add_option("--similarity-threshold", o->prediction.predictor.similarity_threshold,
+                  "with --predict on: least Psi (Eq. 5) for a hypothesis")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--prediction-delay-scans", o->prediction.prediction.deterministic_delay_scans,
+                  "with --predict on: take each prediction exactly N scans after its request "
+                  "(0: as soon as the thread has it; not reproducible bit for bit)")
+      ->check(CLI::Range(0, 100000))->capture_default_str();
   cmd->callback([o, cmd, &exit_code] {
+    o->prediction.predict = o->predict == "on";
+    o->prediction.prediction.recovery = o->recovery == "on";
     o->seed_given = cmd->count("--seed") > 0;
     o->particles_given = cmd->count("--particles") > 0;
     exit_code = RunGridCommand(*o);

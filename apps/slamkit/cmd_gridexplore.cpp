@@ -2,7 +2,6 @@
 // explorer, with P-SLAM's structure prediction on or off.
 #include <cmath>
 #include <cstdint>
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -17,9 +16,7 @@
 #include "plan_input.hpp"
 #include "progress.hpp"
 #include "slamkit/io/error.hpp"
-#include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/writers.hpp"
-#include "slamkit/report/figures.hpp"
 #include "slamkit/runners/grid/grid_explore.hpp"
 #include "slamkit/sim/maze_route.hpp"
 
@@ -60,24 +57,6 @@ Pose2 StartPose(const GridExploreOptions& o) {
   return {v[0], v[1], v[2]};
 }
 
-// hypotheses.csv: one line per prediction request and what became of it.
-void WriteHypotheses(const std::filesystem::path& path, const std::vector<HypothesisRow>& rows) {
-  std::ofstream out(path);
-  out << "id,t_request_s,request_scan,install_scan,end_scan,target_x_m,target_y_m,similarity,"
-         "predicted_area_m2,final_similarity,best_hit_ratio,fate\n";
-  for (const HypothesisRow& row : rows) {
-    const HypothesisRecord& r = row.record;
-    const GridHypothesis& h = r.hypothesis;
-    out << fmt::format("{},{:.1f},{},{},{},{:.2f},{:.2f},{:.4f},{:.2f},{},{},{}\n", h.id,
-                       row.t_request_s, r.request_scan, r.install_scan, r.end_scan,
-                       h.target_m.x(), h.target_m.y(), h.similarity, h.area_m2(),
-                       row.final_similarity ? fmt::format("{:.4f}", *row.final_similarity) : "",
-                       r.best_hit_ratio >= 0.0 ? fmt::format("{:.4f}", r.best_hit_ratio) : "",
-                       HypothesisFateName(r.fate));
-  }
-  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
-}
-
 void WriteOutputs(const std::filesystem::path& dir, const GridExploreOptions& o,
                   const GridExploreResult& r) {
   WriteGridOutputs(dir, r.slam, r.odometry, "explored map");
@@ -85,16 +64,7 @@ void WriteOutputs(const std::filesystem::path& dir, const GridExploreOptions& o,
   WriteJson(dir / "metrics.json",
             GridExploreMetrics(r, o.explore, o.sim_seed, o.slam, PeakRssMib()));
   if (!o.explore.predict) return;
-  WriteHypotheses(dir / "hypotheses.csv", r.hypotheses);
-  WriteOccupancyGridPgm(dir / "predicted.pgm", r.predicted);
-  MapSheetData sheet;
-  MapSheetPanel panel{"explored (grey) and predicted (orange)", RenderOccupancyImage(r.slam.map),
-                      r.slam.trajectory, {}, false};
-  if (r.predicted.min_cell().x <= r.predicted.max_cell().x) {
-    panel.overlay = RenderOccupancyImage(r.predicted);
-  }
-  sheet.panels.push_back(std::move(panel));
-  WriteMapContactSheet(dir / "map_predicted.png", sheet);
+  WritePredictionOutputs(dir, r.slam, r.hypotheses, r.predicted);
 }
 
 void PrintSummary(const GridExploreOptions& o, const GridExploreResult& r) {

@@ -76,6 +76,10 @@ void RegisterMapDiff(CLI::App& app, int& exit_code) {
                   "KL: occupancies clamped to [floor, 1 - floor]")
       ->capture_default_str()
       ->check(CLI::Range(1e-12, 0.499));
+  cmd->add_option("--tolerance", o->params.dice_tolerance_cells,
+                  "Psi: an occupied cell matches one of the other map within N cells (0: Eq. 5)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
   cmd->callback([o, &exit_code] { exit_code = RunMapDiff(*o); });
 }
 

@@ -4,6 +4,8 @@
 #include <malloc.h>
 #endif
 
+#include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
@@ -59,6 +61,43 @@ int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& resu
   figure.panels.push_back({title, RenderOccupancyImage(result.map), result.trajectory, odometry});
   WriteMapContactSheet(dir / "map.png", figure);
   return moved;
+}
+
+namespace {
+
+void WriteHypothesesCsv(const std::filesystem::path& path, const std::vector<HypothesisRow>& rows) {
+  std::ofstream out(path);
+  out << "id,t_request_s,request_scan,install_scan,end_scan,target_x_m,target_y_m,similarity,"
+         "predicted_area_m2,final_similarity,best_hit_ratio,fate\n";
+  for (const HypothesisRow& row : rows) {
+    const HypothesisRecord& r = row.record;
+    const GridHypothesis& h = r.hypothesis;
+    out << fmt::format("{},{:.3f},{},{},{},{:.2f},{:.2f},{:.4f},{:.2f},{},{},{}\n", h.id, h.t_s,
+                       r.request_scan, r.install_scan, r.end_scan, h.target_m.x(),
+                       h.target_m.y(), h.similarity, h.area_m2(),
+                       row.final_similarity ? fmt::format("{:.4f}", *row.final_similarity) : "",
+                       r.best_hit_ratio >= 0.0 ? fmt::format("{:.4f}", r.best_hit_ratio) : "",
+                       HypothesisFateName(r.fate));
+  }
+  if (!out.flush()) throw std::runtime_error("cannot write " + path.string());
+}
+
+}  // namespace
+
+void WritePredictionOutputs(const std::filesystem::path& dir, const GridRunResult& result,
+                            const std::vector<HypothesisRow>& hypotheses,
+                            const OccupancyGrid& predicted) {
+  WriteHypothesesCsv(dir / "hypotheses.csv", hypotheses);
+  WriteOccupancyGridPgm(dir / "predicted.pgm", predicted);
+  MapSheetData sheet;
+  sheet.panel_px = 900;
+  MapSheetPanel panel{"explored (grey) and predicted (orange)", RenderOccupancyImage(result.map),
+                      result.trajectory, {}, false};
+  if (predicted.min_cell().x <= predicted.max_cell().x) {
+    panel.overlay = RenderOccupancyImage(predicted);
+  }
+  sheet.panels.push_back(std::move(panel));
+  WriteMapContactSheet(dir / "map_predicted.png", sheet);
 }
 
 void PrintGridRun(const std::string& source, const GridRunResult& result, int particles) {

@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "slamkit/runners/grid/grid_run.hpp"
+#include "slamkit/runners/grid/hypotheses.hpp"
 
 namespace slamkit::app {
 
@@ -24,6 +25,14 @@ std::vector<CLI::Option*> AddGridFilterOptions(CLI::App* cmd, GridSlamConfig& co
 // the log's. Returns how many of trajectory.tum's times were moved.
 int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& result,
                      const Trajectory& odometry = {}, const std::string& title = "");
+
+// P-SLAM's outputs (SPEC S4): DIR/hypotheses.csv (a line per prediction request: its time and
+// scans, target, Ψ, predicted area, similarity with the final map, best hit ratio and fate),
+// DIR/predicted.pgm + predicted.yaml (the predicted cells where the map is unknown) and
+// DIR/map_predicted.png (the map with those cells in orange).
+void WritePredictionOutputs(const std::filesystem::path& dir, const GridRunResult& result,
+                            const std::vector<HypothesisRow>& hypotheses,
+                            const OccupancyGrid& predicted);
 
 // The summary's first lines: counts, wall time, scans per second, peak memory.
 void PrintGridRun(const std::string& source, const GridRunResult& result, int particles);

@@ -47,15 +47,48 @@ void CheckInputs(const OccupancyImage& a, const OccupancyImage& b, const MapComp
     throw std::invalid_argument("map comparison: the maps' resolutions differ");
   }
   if (!(0.0 <= p.free_threshold && p.free_threshold < p.occupied_threshold &&
-        p.occupied_threshold <= 1.0 && p.probability_floor > 0.0 && p.probability_floor < 0.5)) {
+        p.occupied_threshold <= 1.0 && p.probability_floor > 0.0 && p.probability_floor < 0.5 &&
+        p.dice_tolerance_cells >= 0 && p.dice_tolerance_cells <= 100)) {
     throw std::invalid_argument(
-        "map comparison: need 0 <= free_threshold < occupied_threshold <= 1, 0 < floor < 0.5");
+        "map comparison: need 0 <= free_threshold < occupied_threshold <= 1, 0 < floor < 0.5, "
+        "0 <= dice_tolerance_cells <= 100");
   }
 }
 
 // Pixel of cell (x, y) counted from the lower-left corner (the image's top row is the largest y).
 std::uint8_t At(const OccupancyImage& image, long x, long y) {
   return image.pixels[static_cast<std::size_t>((image.height - 1 - y) * image.width + x)];
+}
+
+bool OccupiedNear(const OccupancyImage& image, long x, long y, int k,
+                  const MapComparisonParams& params) {
+  for (long v = std::max(0L, y - k); v <= std::min<long>(image.height - 1, y + k); ++v) {
+    for (long u = std::max(0L, x - k); u <= std::min<long>(image.width - 1, x + k); ++u) {
+      if (Read(At(image, u, v), params).cell == CellClass::kOccupied) return true;
+    }
+  }
+  return false;
+}
+
+// Ψ with a tolerance: the occupied cells of each map (over the overlap) that have an occupied
+// cell of the other within k cells, over all occupied cells. k = 0 is Eq. 5.
+double TolerantDice(const OccupancyImage& first, const OccupancyImage& second, long dx, long dy,
+                    long x0, long x1, long y0, long y1, const MapComparisonParams& params) {
+  const int k = params.dice_tolerance_cells;
+  long matched = 0, occupied = 0;
+  for (long y = y0; y < y1; ++y) {
+    for (long x = x0; x < x1; ++x) {
+      if (Read(At(first, x, y), params).cell == CellClass::kOccupied) {
+        ++occupied;
+        matched += OccupiedNear(second, x - dx, y - dy, k, params);
+      }
+      if (Read(At(second, x - dx, y - dy), params).cell == CellClass::kOccupied) {
+        ++occupied;
+        matched += OccupiedNear(first, x, y, k, params);
+      }
+    }
+  }
+  return occupied > 0 ? double(matched) / double(occupied) : 0.0;
 }
 
 }  // namespace
@@ -87,6 +120,9 @@ MapComparison CompareMaps(const OccupancyImage& first, const OccupancyImage& sec
   out.cell_accuracy = out.known_cells > 0 ? double(same) / double(out.known_cells) : 0.0;
   const long occupied = occupied_first + occupied_second;
   out.dice_occupied = occupied > 0 ? 2.0 * double(occupied_both) / double(occupied) : 0.0;
+  if (params.dice_tolerance_cells > 0) {
+    out.dice_occupied = TolerantDice(first, second, dx, dy, x0, x1, y0, y1, params);
+  }
   return out;
 }
 

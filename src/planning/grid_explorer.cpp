@@ -11,15 +11,6 @@
 namespace slamkit {
 namespace {
 
-// As FindFrontierRegions decides it: a free cell with an unknown 4-neighbour.
-bool IsFrontierCell(const OccupancyGrid& map, const CellIndex& c, double free_probability) {
-  if (!map.IsKnown(c) || map.Probability(c) >= free_probability) return false;
-  constexpr std::array<std::array<int, 2>, 4> kSides = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
-  return std::any_of(kSides.begin(), kSides.end(), [&](const std::array<int, 2>& d) {
-    return !map.IsKnown({c.x + d[0], c.y + d[1]});
-  });
-}
-
 // The point of leg `leg` (from w[leg] to w[leg + 1]) nearest to p, as its distance along the leg.
 double ProjectOnLeg(const std::vector<Eigen::Vector2d>& w, std::size_t leg,
                     const Eigen::Vector2d& p) {
@@ -94,7 +85,7 @@ void GridExplorer::RecordReachedGoal(const Pose2& estimate, const OccupancyGrid&
 
 bool GridExplorer::NeedsPlan(const OccupancyGrid& map, double t_s) const {
   if (!last_plan_s_ || t_s - *last_plan_s_ >= params_.replan_period_s) return true;
-  return target_ && !IsFrontierCell(map, target_->cell, params_.frontiers.free_probability);
+  return target_ && !IsFrontierCell(map, target_->cell, params_.frontiers);
 }
 
 void GridExplorer::Plan(const Pose2& estimate, const OccupancyGrid& map, double t_s,

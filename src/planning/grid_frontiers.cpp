@@ -22,13 +22,10 @@ struct Window {
   }
 };
 
-bool IsFrontier(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& p) {
-  if (!grid.IsKnown(c) || grid.Probability(c) >= p.free_probability) return false;
-  constexpr std::array<std::array<int, 2>, 4> kSides = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
-  for (const auto& [dx, dy] : kSides) {
-    if (!grid.IsKnown({c.x + dx, c.y + dy})) return true;
-  }
-  return false;
+bool Unexplored(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& p) {
+  if (!grid.IsKnown(c)) return true;
+  const double probability = grid.Probability(c);
+  return probability >= p.free_probability && probability <= p.occupied_probability;
 }
 
 // The 8-connected region of frontier cells holding `seed`, marked in `taken`.
@@ -57,19 +54,32 @@ FrontierRegion GrowRegion(const OccupancyGrid& grid, const Window& w, CellIndex 
 
 }  // namespace
 
+bool IsFrontierCell(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& p) {
+  if (!grid.IsKnown(c) || grid.Probability(c) >= p.free_probability) return false;
+  constexpr std::array<std::array<int, 2>, 4> kSides = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+  for (const auto& [dx, dy] : kSides) {
+    if (Unexplored(grid, {c.x + dx, c.y + dy}, p)) return true;
+  }
+  return false;
+}
+
 std::vector<FrontierRegion> FindFrontierRegions(const OccupancyGrid& grid,
                                                 const GridFrontierParams& params) {
-  if (!(params.free_probability > 0.0 && params.free_probability < 1.0) ||
+  if (!(params.free_probability > 0.0 && params.free_probability <= params.occupied_probability &&
+        params.occupied_probability < 1.0) ||
       params.min_region_cells < 1) {
     throw std::invalid_argument(
-        "grid frontiers: need 0 < free_probability < 1, min_region_cells >= 1");
+        "grid frontiers: need 0 < free_probability <= occupied_probability < 1, "
+        "min_region_cells >= 1");
   }
   const CellIndex lo = grid.min_cell(), hi = grid.max_cell();
   if (lo.x > hi.x || lo.y > hi.y) return {};
   const Window w{lo.x - 1, lo.y - 1, hi.x - lo.x + 3, hi.y - lo.y + 3};
   std::vector<char> frontier(static_cast<std::size_t>(w.width) * w.height, 0);
   for (int y = lo.y; y <= hi.y; ++y) {
-    for (int x = lo.x; x <= hi.x; ++x) frontier[w.Index(x, y)] = IsFrontier(grid, {x, y}, params);
+    for (int x = lo.x; x <= hi.x; ++x) {
+      frontier[w.Index(x, y)] = IsFrontierCell(grid, {x, y}, params);
+    }
   }
   std::vector<char> taken(frontier.size(), 0);
   std::vector<FrontierRegion> regions;

@@ -52,6 +52,23 @@ TEST(CompareMaps, DiceOfDisjointAndOverlappingWalls) {
 
 // Eq. 24: each free cell made occupied adds the Bernoulli divergence of p = 1/255 (a free
 // pixel) from q = 1 − floor (an occupied one, clamped), so the sum grows with the differences.
+// A wall one cell apart in the two maps: Ψ 0 by Eq. 5, 1 with a tolerance of one cell; a wall
+// two cells away still 0 with it; with k = 0 the tolerant count is Eq. 5 itself.
+TEST(CompareMaps, ToleranceMatchesAWallOneCellAway) {
+  OccupancyImage a = FreeMap(10, 10), b = FreeMap(10, 10), c = FreeMap(10, 10);
+  for (int x = 1; x <= 8; ++x) Set(a, x, 4, kOccupied), Set(b, x, 5, kOccupied);
+  for (int x = 1; x <= 8; ++x) Set(c, x, 6, kOccupied);
+  MapComparisonParams tolerant;
+  tolerant.dice_tolerance_cells = 1;
+  EXPECT_EQ(CompareMaps(a, b).dice_occupied, 0.0);
+  EXPECT_EQ(CompareMaps(a, b, tolerant).dice_occupied, 1.0);
+  EXPECT_EQ(CompareMaps(a, c, tolerant).dice_occupied, 0.0);
+  Set(c, 1, 5, kOccupied);  // one cell of c beside a's wall: a's (1,4), (2,4) and c's (1,5) match
+  EXPECT_DOUBLE_EQ(CompareMaps(a, c, tolerant).dice_occupied, 3.0 / 17.0);
+  tolerant.dice_tolerance_cells = -1;
+  EXPECT_THROW(CompareMaps(a, b, tolerant), std::invalid_argument);
+}
+
 TEST(CompareMaps, KlDivergenceGrowsWithEachChangedCell) {
   const OccupancyImage a = FreeMap(10, 10);
   OccupancyImage b = a;

@@ -14,6 +14,10 @@ struct MapComparisonParams {
   // The KL divergence takes p in [floor, 1 − floor]: a cell at p = 0 or 1 in one map and not in
   // the other would otherwise make it infinite (a trinary image has only 0, 1 and unknown).
   double probability_floor = 1e-3;
+  // Ψ counts an occupied cell as shared when the other map has one within this many cells (in
+  // x and y): two maps of one wall, drawn from its two sides or rasterised from its line, put it
+  // one cell apart as often as not. 0: Eq. 5 exactly.
+  int dice_tolerance_cells = 0;
 };
 
 // Two maps over the cells they share (their overlap in the world; both at one resolution, their
@@ -28,7 +32,8 @@ struct MapComparison {
   // The share of the known cells that are in the same class (free, occupied, unknown) in both.
   double cell_accuracy = 0.0;
   // SPEC S4, Eq. 5: Ψ = 2 |occ(A) ∩ occ(B)| / (|occ(A)| + |occ(B)|) over the overlap; 0 when
-  // neither map has an occupied cell there.
+  // neither map has an occupied cell there. With a tolerance k: the occupied cells of either map
+  // with an occupied cell of the other within k cells, over |occ(A)| + |occ(B)|.
   double dice_occupied = 0.0;
 };
 

@@ -13,10 +13,19 @@ namespace slamkit {
 struct GridFrontierParams {
   // A known cell below this occupancy is free: a robot may stand there.
   double free_probability = 0.35;
+  // A known cell above this occupancy is occupied. A cell between the two is unexplored, as an
+  // unknown one: a cell one beam has crossed (log-odds −0.4, p = 0.40) is neither free nor a wall,
+  // and a free cell beside it is where exploring goes on (at the laser's range, where the beams
+  // spread wider than a cell, such cells close corridors off otherwise).
+  double occupied_probability = 0.65;
   // Regions of fewer frontier cells are dropped: a single unknown cell among free ones is a
   // beam that missed it, not a way into new space.
   int min_region_cells = 5;
 };
+
+// Whether `c` is a frontier cell: free, with a 4-neighbour neither free nor occupied (unknown, or
+// between the two thresholds).
+bool IsFrontierCell(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& params);
 
 // One 8-connected group of frontier cells.
 struct FrontierRegion {

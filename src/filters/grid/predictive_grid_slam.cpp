@@ -105,8 +105,10 @@ void PredictiveGridSlam::TakeFinished(bool wait) {
   if (!result) {
     record.fate = HypothesisFate::kNoStructure;
   } else {
+    const double t_s = record.hypothesis.t_s;  // the request's, whatever the predictor says
     record.hypothesis = std::move(result->hypothesis);
     record.hypothesis.id = in_flight_record_;
+    record.hypothesis.t_s = t_s;
     record.fate = result->accepted ? HypothesisFate::kActive : HypothesisFate::kBelowThreshold;
     record.unexplored_cells = record.hypothesis.predicted_cells;
     if (result->accepted) Install(in_flight_record_);

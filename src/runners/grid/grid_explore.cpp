@@ -14,24 +14,6 @@
 namespace slamkit {
 namespace {
 
-// The layer's cells where `map` is unknown: what the best particle sees predicted.
-OccupancyGrid PredictedCells(const OccupancyGrid& map, const OccupancyGrid* layer) {
-  OccupancyGrid out(map.params());
-  if (layer == nullptr) return out;
-  ForEachKnownCell(*layer, [&](const CellIndex& c, OccupancyGrid::CellValue v) {
-    if (!map.IsKnown(c)) out.UpdateSteps(c, v);
-  });
-  return out;
-}
-
-OccupancyGrid Combined(const OccupancyGrid& map, const OccupancyGrid& predicted) {
-  OccupancyGrid out = map;
-  ForEachKnownCell(predicted, [&](const CellIndex& c, OccupancyGrid::CellValue v) {
-    out.UpdateSteps(c, v);
-  });
-  return out;
-}
-
 double KnownArea(const OccupancyGrid& grid) {
   long cells = 0;
   ForEachKnownCell(grid, [&](const CellIndex&, OccupancyGrid::CellValue) { ++cells; });
@@ -114,7 +96,7 @@ Control Exploration::Decide(double t_s) {
   if (predictive_ == nullptr) return explorer_.Step(slam_->CurrentPose(), slam_->BestMap(), t_s);
   const OccupancyGrid& map = slam_->BestMap();
   const OccupancyGrid* layer = predictive_->BestPredictedLayer();
-  const OccupancyGrid planned = layer == nullptr ? map : Combined(map, PredictedCells(map, layer));
+  const OccupancyGrid planned = layer == nullptr ? map : WithPredictedCells(map, PredictedCells(map, layer));
   const Control u = explorer_.Step(slam_->CurrentPose(), planned, t_s);
   if (explorer_.target_changed() && explorer_.target()) {
     predictive_->RequestPrediction(planned.CellCenter(explorer_.target()->cell));
@@ -145,23 +127,18 @@ void Exploration::Finish(GridExploreResult& out) {
   out.slam.heading_drift_in_use_rad_per_m = stats.heading_drift_in_use_rad_per_m;
   if (predictive_ == nullptr) return;
   out.predicted = PredictedCells(out.slam.map, predictive_->BestPredictedLayer());
-  for (const HypothesisRecord& record : predictive_->records()) {
-    HypothesisRow row{record, out.truth.at(record.request_scan - 1).t_s, std::nullopt};
-    // h is in the frame of the best map at its request: the world's, up to the filter's error.
-    if (record.hypothesis.predicted_cells > 0) {
-      row.final_similarity = HypothesisSimilarity(record.hypothesis, Pose2(), out.slam.map,
-                                                  params_.predictor);
-    }
-    out.hypotheses.push_back(std::move(row));
-  }
+  out.hypotheses = HypothesisRows(*predictive_, out.slam.map, params_.predictor);
 }
 
-void ScoreMaps(const FloorPlan& plan, const Pose2& start, GridExploreResult& out) {
+void ScoreMaps(const FloorPlan& plan, const Pose2& start, int tolerance_cells,
+               GridExploreResult& out) {
   out.truth_map = FloorPlanOccupancy(plan, out.slam.map.params(), start.translation());
   const OccupancyImage truth = RenderOccupancyImage(out.truth_map);
-  out.explored_vs_truth = CompareMaps(RenderOccupancyImage(out.slam.map), truth);
-  out.combined_vs_truth =
-      CompareMaps(RenderOccupancyImage(Combined(out.slam.map, out.predicted)), truth);
+  MapComparisonParams scoring;
+  scoring.dice_tolerance_cells = tolerance_cells;
+  out.explored_vs_truth = CompareMaps(RenderOccupancyImage(out.slam.map), truth, scoring);
+  out.combined_vs_truth = CompareMaps(
+      RenderOccupancyImage(WithPredictedCells(out.slam.map, out.predicted)), truth, scoring);
   out.explored_area_m2 = KnownArea(out.slam.map);
   out.predicted_area_m2 = KnownArea(out.predicted);
 }
@@ -185,7 +162,7 @@ GridExploreResult RunGridExploration(const FloorPlan& plan, const Pose2& start,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   out.vs_truth = CompareWithReference(out.slam.trajectory, out.truth);
   out.odometry_vs_truth = CompareWithReference(out.odometry, out.truth);
-  ScoreMaps(plan, start, out);
+  ScoreMaps(plan, start, params.dice_tolerance_cells, out);
   return out;
 }
 
@@ -196,20 +173,6 @@ nlohmann::json MapComparisonJson(const MapComparison& c) {
           {"cell_accuracy", c.cell_accuracy},
           {"dice_occupied", c.dice_occupied},
           {"known_cells", c.known_cells}};
-}
-
-nlohmann::json HypothesisCounts(const std::vector<HypothesisRow>& rows) {
-  nlohmann::json counts = nlohmann::json::object();
-  for (HypothesisFate fate :
-       {HypothesisFate::kNoStructure, HypothesisFate::kBelowThreshold, HypothesisFate::kActive,
-        HypothesisFate::kExplored, HypothesisFate::kDroppedByRecovery}) {
-    counts[HypothesisFateName(fate)] = 0;
-  }
-  for (const HypothesisRow& row : rows) {
-    nlohmann::json& count = counts[HypothesisFateName(row.record.fate)];
-    count = count.get<int>() + 1;
-  }
-  return counts;
 }
 
 }  // namespace
@@ -230,7 +193,7 @@ nlohmann::json GridExploreMetrics(const GridExploreResult& result, const GridExp
   j["explored_area_m2"] = result.explored_area_m2;
   j["predicted_area_m2"] = result.predicted_area_m2;
   j["hypotheses"] = result.hypotheses.size();
-  j["hypotheses_by_fate"] = HypothesisCounts(result.hypotheses);
+  j["hypotheses_by_fate"] = HypothesisFateCounts(result.hypotheses);
   return j;
 }
 

@@ -1,6 +1,7 @@
 #include "slamkit/runners/grid/grid_run.hpp"
 
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -78,6 +79,26 @@ GridRunResult RunGridSlam(const CarmenLog& log, const GridSlamConfig& config,
   AsInputErrors([&] { slam = MakeGridSlam(config); });
   GridRunResult out = RunGridSlam(log, *slam, progress);
   out.wall_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+PredictiveRunResult RunPredictiveGridSlam(const CarmenLog& log, const GridSlamConfig& config,
+                                          const GridPredictionConfig& prediction,
+                                          const std::function<void(int, int)>& progress) {
+  CheckHasScans(log);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<PredictiveGridSlam> slam;
+  AsInputErrors([&] {
+    slam = std::make_unique<PredictiveGridSlam>(config.rbpf, prediction.prediction,
+                                                MakeStructurePredictor(prediction.predictor));
+  });
+  PredictiveRunResult out;
+  out.run = RunGridSlam(log, *slam, progress);
+  slam->Flush();
+  out.hypotheses = HypothesisRows(*slam, out.run.map, prediction.predictor);
+  out.predicted = PredictedCells(out.run.map, slam->BestPredictedLayer());
+  out.run.wall_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -12,6 +12,7 @@
 #include "slamkit/planning/grid_explorer.hpp"
 #include "slamkit/planning/structure_predictor.hpp"
 #include "slamkit/runners/grid/grid_run.hpp"
+#include "slamkit/runners/grid/hypotheses.hpp"
 #include "slamkit/sim/laser_sim.hpp"
 
 namespace slamkit {
@@ -44,16 +45,13 @@ struct GridExploreParams {
   // with the predicted cells filled in, so that what is predicted is not visited. Off: plain
   // grid RBPF and full frontier coverage.
   bool predict = false;
+  // The maps' Ψ against the true map counts a wall cell within this many cells of the other's
+  // (MapComparisonParams): the true walls are rasterised from their lines, the mapped ones from
+  // the beams' ends, on either side of the line.
+  int dice_tolerance_cells = 1;
   GridExplorerParams explorer;
   StructurePredictorParams predictor;
   PredictiveGridSlamParams prediction = ExplorerDrivenPrediction();
-};
-
-// One hypothesis as hypotheses.csv lists it.
-struct HypothesisRow {
-  HypothesisRecord record;
-  double t_request_s = 0.0;
-  std::optional<double> final_similarity;  // Ψ against the finally built map where it knows h
 };
 
 struct GridExploreResult {

@@ -12,6 +12,7 @@
 #include "slamkit/filters/grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 #include "slamkit/runners/common/log_scoring.hpp"
+#include "slamkit/runners/grid/hypotheses.hpp"
 
 namespace slamkit {
 
@@ -39,6 +40,19 @@ GridRunResult RunGridSlam(const CarmenLog& log, GridSlam& slam,
 // The same with the filter `config` names (MakeGridSlam); its params' errors are InputErrors.
 GridRunResult RunGridSlam(const CarmenLog& log, const GridSlamConfig& config,
                           const std::function<void(int, int)>& progress = {});
+
+// P-SLAM on a log (SPEC S4): the grid RBPF of config.rbpf with structure prediction, the
+// predictor choosing its own targets (the nearest reachable frontier of the best map) every
+// prediction.request_every_updates updates. With prediction.deterministic_delay_scans > 0 a seed
+// gives one run bit for bit.
+struct PredictiveRunResult {
+  GridRunResult run;
+  std::vector<HypothesisRow> hypotheses;
+  OccupancyGrid predicted;  // the best particle's predicted cells where its map is unknown
+};
+PredictiveRunResult RunPredictiveGridSlam(const CarmenLog& log, const GridSlamConfig& config,
+                                          const GridPredictionConfig& prediction,
+                                          const std::function<void(int, int)>& progress = {});
 
 // metrics.json of a grid run (README's output contract); `relations` and `reference` may be null.
 nlohmann::json GridMetrics(const GridRunResult& result, const GridSlamConfig& config,
