@@ -121,6 +121,11 @@ void AddExploreOptions(CLI::App* cmd, GridExploreOptions& o) {
       ->check(SeedNumber())->capture_default_str();
   cmd->add_option("--max-time", o.explore.max_time_s, "stop after this much simulated time [s]")
       ->check(CLI::Range(1.0, 1e6))->capture_default_str();
+  cmd->add_option("--odom-sigma-v", o.explore.sigma_v_mps, "odometry noise on the speed [m/s]")
+      ->capture_default_str()->check(NonNegativeNumber());
+  cmd->add_option("--odom-sigma-omega", o.explore.sigma_omega_radps,
+                  "odometry noise on the turn rate [rad/s]")
+      ->capture_default_str()->check(NonNegativeNumber());
   cmd->add_option("--laser-range", o.explore.laser.range_limit_m, "laser range [m]")
       ->check(CLI::Range(0.5, 80.0))->capture_default_str();
 }

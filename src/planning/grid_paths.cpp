@@ -24,12 +24,22 @@ void CheckParams(const GridPathParams& p) {
   }
 }
 
+// A clearance is a rounded product (resolution × a distance in cells): one that is exactly the
+// radius (the middle of a gap 2 × radius + one cell wide) may come out a rounding error below it,
+// and must not block.
+constexpr double kClearanceSlack_m = 1e-9;
+
+// Whether a cell `clearance` from the nearest obstacle lies in the inflated zone.
+bool Inflated(double clearance, const GridPathParams& p) {
+  return clearance < p.robot_radius_m - kClearanceSlack_m;
+}
+
 // The penalty per metre of a cell `clearance` from the nearest obstacle (see GridPathParams).
 double Penalty(double clearance, const GridPathParams& p) {
-  if (clearance < p.robot_radius_m) return p.clearance_cost_weight;  // escaping an inflated zone
+  if (Inflated(clearance, p)) return p.clearance_cost_weight;  // escaping an inflated zone
   if (p.clearance_m <= 0.0) return 0.0;
   const double excess = (clearance - p.robot_radius_m) / p.clearance_m;
-  return p.clearance_cost_weight * std::max(0.0, 1.0 - excess);
+  return p.clearance_cost_weight * std::clamp(1.0 - excess, 0.0, 1.0);
 }
 
 // An occupied cell all of whose 4-neighbours are occupied is never the nearest to a cell outside:
@@ -83,24 +93,25 @@ void GridPathCosts::ComputeClearance(const OccupancyGrid& grid) {
   }
   const double reach_m = params_.robot_radius_m + params_.clearance_m;
   const int reach = static_cast<int>(std::ceil(reach_m / resolution_m_)) + 1;
-  struct Offset { int dx, dy; float d_m; };
+  struct Offset { int dx, dy; double d_m; };
   std::vector<Offset> disc;
   for (int dy = -reach; dy <= reach; ++dy) {
     for (int dx = -reach; dx <= reach; ++dx) {
       const double ex = std::max(std::abs(dx) - 0.5, 0.0), ey = std::max(std::abs(dy) - 0.5, 0.0);
       const double d = resolution_m_ * std::hypot(ex, ey);
-      if (d < reach_m || (dx == 0 && dy == 0)) disc.push_back({dx, dy, static_cast<float>(d)});
+      if (d < reach_m || (dx == 0 && dy == 0)) disc.push_back({dx, dy, d});
     }
   }
-  clearance_m_.assign(n, std::numeric_limits<float>::infinity());
+  clearance_m_.assign(n, kInf);
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       if (!occupied[std::size_t(y) * width_ + x]) continue;
+      clearance_m_[std::size_t(y) * width_ + x] = 0.0;  // inside an obstacle, no border stamps it
       if (!OnObstacleBorder(occupied, x, y, width_, height_)) continue;
       for (const Offset& o : disc) {
         const int nx = x + o.dx, ny = y + o.dy;
         if (nx < 0 || ny < 0 || nx >= width_ || ny >= height_) continue;
-        float& c = clearance_m_[std::size_t(ny) * width_ + nx];
+        double& c = clearance_m_[std::size_t(ny) * width_ + nx];
         c = std::min(c, o.d_m);
       }
     }
@@ -127,7 +138,7 @@ void GridPathCosts::RunDijkstra() {
       const CellIndex next{c.x + kSteps[k][0], c.y + kSteps[k][1]};
       if (!Contains(next) || !free_[Index(next)]) continue;
       const double next_clear = clearance_m_[Index(next)];
-      if (next_clear < params_.robot_radius_m && !(next_clear > clear)) continue;
+      if (Inflated(next_clear, params_) && !(next_clear > clear)) continue;
       const double length = k < 4 ? resolution_m_ : resolution_m_ * std::sqrt(2.0);
       const double next_cost =
           cost + length * (1.0 + 0.5 * (penalty + Penalty(next_clear, params_)));
@@ -164,7 +175,7 @@ double GridPathCosts::Clearance(const CellIndex& c) const {
 bool GridPathCosts::IsFree(const CellIndex& c) const { return Contains(c) && free_[Index(c)]; }
 
 bool GridPathCosts::Traversable(const CellIndex& c) const {
-  return IsFree(c) && Clearance(c) >= params_.robot_radius_m;
+  return IsFree(c) && !Inflated(Clearance(c), params_);
 }
 
 // Greedy line-of-sight: from the last waypoint, the path is followed as long as the straight line
@@ -182,7 +193,7 @@ std::vector<Eigen::Vector2d> SimplifyPath(const GridPathCosts& costs,
   const auto line_clear = [&](const CellIndex& a, const CellIndex& b, double needed) {
     const std::vector<CellIndex> cells = RayCells(a, b);
     return std::all_of(cells.begin() + 1, cells.end(), [&](const CellIndex& c) {
-      return costs.IsFree(c) && costs.Clearance(c) >= needed;
+      return costs.IsFree(c) && costs.Clearance(c) >= needed - kClearanceSlack_m;
     });
   };
   std::vector<Eigen::Vector2d> waypoints = {centre(path.front())};

@@ -76,7 +76,7 @@ class GridPathCosts {
   CellIndex start_;
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;  // the window
   std::vector<char> free_;
-  std::vector<float> clearance_m_;
+  std::vector<double> clearance_m_;
   std::vector<double> cost_m_;
   std::vector<std::int8_t> parent_;  // the step (index into the 8 neighbours) that reached a cell
 };

@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "slamkit/io/error.hpp"
 #include "slamkit/io/grid_writers.hpp"
 #include "slamkit/models/motion_model.hpp"
 #include "slamkit/sim/floor_plan_grid.hpp"
@@ -130,9 +133,7 @@ void Exploration::Finish(GridExploreResult& out) {
   out.hypotheses = HypothesisRows(*predictive_, out.slam.map, params_.predictor);
 }
 
-void ScoreMaps(const FloorPlan& plan, const Pose2& start, int tolerance_cells,
-               GridExploreResult& out) {
-  out.truth_map = FloorPlanOccupancy(plan, out.slam.map.params(), start.translation());
+void ScoreMaps(int tolerance_cells, GridExploreResult& out) {
   const OccupancyImage truth = RenderOccupancyImage(out.truth_map);
   MapComparisonParams scoring;
   scoring.dice_tolerance_cells = tolerance_cells;
@@ -155,6 +156,13 @@ GridExploreResult RunGridExploration(const FloorPlan& plan, const Pose2& start,
   }
   const auto wall_start = std::chrono::steady_clock::now();
   GridExploreResult out;
+  // The true map first: a start on a wall or outside the plan is an input error before the run.
+  try {
+    out.truth_map = FloorPlanOccupancy(plan, slam.rbpf.grid, start.translation());
+  } catch (const std::invalid_argument&) {
+    throw InputError(fmt::format("gridexplore: the start ({}, {}) lies on a wall or outside the "
+                                 "plan's walls", start.x(), start.y()));
+  }
   Exploration exploration(plan, start, sim_seed, slam, params);
   exploration.Run(progress, out);
   exploration.Finish(out);
@@ -162,7 +170,7 @@ GridExploreResult RunGridExploration(const FloorPlan& plan, const Pose2& start,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   out.vs_truth = CompareWithReference(out.slam.trajectory, out.truth);
   out.odometry_vs_truth = CompareWithReference(out.odometry, out.truth);
-  ScoreMaps(plan, start, params.dice_tolerance_cells, out);
+  ScoreMaps(params.dice_tolerance_cells, out);
   return out;
 }
 
