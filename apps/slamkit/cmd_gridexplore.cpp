@@ -71,9 +71,9 @@ void PrintSummary(const GridExploreOptions& o, const GridExploreResult& r) {
   PrintGridRun(o.plan, r.slam, o.slam.rbpf.particles);
   PrintComparison("truth", r.vs_truth);
   fmt::print("  {:<28}{:>12}\n", "exploration",
-             fmt::format("{} in {:.1f} s, {:.1f} m, {} targets",
+             fmt::format("{} in {:.1f} s, {:.1f} m, {} targets, {:.2f} m from walls at least",
                          r.finished ? "finished" : "stopped", r.exploration_time_s,
-                         r.path_length_m, r.targets));
+                         r.path_length_m, r.targets, r.closest_wall_m));
   fmt::print("  {:<28}{:>12}\n", "explored map vs truth",
              fmt::format("psi {:.3f}, accuracy {:.3f}", r.explored_vs_truth.dice_occupied,
                          r.explored_vs_truth.cell_accuracy));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -16,6 +17,17 @@
 
 namespace slamkit {
 namespace {
+
+double DistanceToWalls(const FloorPlan& plan, const Eigen::Vector2d& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const WallSegment& w : plan.walls) {
+    const Eigen::Vector2d d = w.second - w.first;
+    const double n = d.squaredNorm();
+    const double t = n > 0.0 ? std::clamp((p - w.first).dot(d) / n, 0.0, 1.0) : 0.0;
+    best = std::min(best, (w.first + t * d - p).norm());
+  }
+  return best;
+}
 
 double KnownArea(const OccupancyGrid& grid) {
   long cells = 0;
@@ -112,6 +124,8 @@ void Exploration::Move(const Control& u, GridExploreResult& out) {
   const Pose2 next = model_.Move(truth_, u, params_.dt_s);
   out.path_length_m += (next.translation() - truth_.translation()).norm();
   truth_ = next;
+  // The simulated robot does not collide: how close it came is reported instead.
+  out.closest_wall_m = std::min(out.closest_wall_m, DistanceToWalls(plan_, truth_.translation()));
   Control measured = u;
   measured[0] += rng_.Normal(0.0, params_.sigma_v_mps);
   measured[1] += rng_.Normal(0.0, params_.sigma_omega_radps);
@@ -194,6 +208,7 @@ nlohmann::json GridExploreMetrics(const GridExploreResult& result, const GridExp
   j["finished"] = result.finished;
   j["exploration_time_s"] = result.exploration_time_s;
   j["path_length_m"] = result.path_length_m;
+  j["closest_wall_m"] = result.closest_wall_m;
   j["targets"] = result.targets;
   j["odometry_ate_rmse_m"] = result.odometry_vs_truth.ate.rmse_m;
   j["explored_vs_truth"] = MapComparisonJson(result.explored_vs_truth);

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -62,6 +63,9 @@ struct GridExploreResult {
   bool finished = false;  // the explorer found no frontier left before max_time_s
   double exploration_time_s = 0.0;
   double path_length_m = 0.0;  // of the true path
+  // The true path's least distance to a wall (the robot does not collide; a robot of radius
+  // explorer.paths.robot_radius_m touched one where this is smaller).
+  double closest_wall_m = std::numeric_limits<double>::infinity();
   int targets = 0;
   std::vector<HypothesisRow> hypotheses;
   OccupancyGrid predicted;  // the best particle's predicted cells where its map is unknown
@@ -79,7 +83,7 @@ GridExploreResult RunGridExploration(const FloorPlan& plan, const Pose2& start,
                                      const std::function<void(double, double)>& progress = {});
 
 // metrics.json: GridMetrics with the comparison against the truth, plus the exploration's
-// figures (finished, exploration_time_s, path_length_m, targets), the maps against the truth
+// figures (finished, exploration_time_s, path_length_m, closest_wall_m, targets), the maps against the truth
 // (explored_* and combined_*: kl_divergence, cell_accuracy, dice_occupied), the areas and the
 // hypotheses' counts by fate.
 nlohmann::json GridExploreMetrics(const GridExploreResult& result, const GridExploreParams& params,
