@@ -53,6 +53,29 @@ TEST(MapDiff, AMapAgainstItselfAndAgainstOneWithAShorterWall) {
   EXPECT_NE(text.output.find("KL divergence"), std::string::npos) << text.output;
 }
 
+// A wall one cell up in the second map: Ψ 0 as is, 1 with --tolerance 1, and with --align the
+// second is moved back down by the cell (its shift in the JSON).
+TEST(MapDiff, ToleranceAndAlignment) {
+  const fs::path dir = FreshDir("mapdiff_align");
+  const fs::path a = WriteMap(dir / "a", 20, 10, 12), b = WriteMap(dir / "b", 20, 10, 12);
+  {  // b's wall one row up: swap its last two rows
+    std::ofstream(dir / "b" / "map.yaml") << "image: map.pgm\nresolution: 0.1\norigin: [0.0, "
+                                          << "0.1, 0.0]\nnegate: 0\noccupied_thresh: 0.65\n"
+                                          << "free_thresh: 0.196\n";
+  }
+  const std::string maps = a.string() + " " + b.string() + " --json";
+  const auto exact = nlohmann::json::parse(RunShell("mapdiff " + maps).output);
+  EXPECT_EQ(exact["dice_occupied"], 0.0);
+  const auto tolerant =
+      nlohmann::json::parse(RunShell("mapdiff " + maps + " --tolerance 1").output);
+  EXPECT_EQ(tolerant["dice_occupied"], 1.0);
+  const CliResult aligned = RunShell("mapdiff " + maps + " --align --align-shift 0.5");
+  ASSERT_EQ(aligned.exit_code, 0) << aligned.output;
+  const auto j = nlohmann::json::parse(aligned.output);
+  EXPECT_NEAR(j["alignment"]["y_m"].get<double>(), -0.1, 1e-9);
+  EXPECT_EQ(j["dice_occupied"], 1.0);
+}
+
 TEST(MapDiff, MapsThatCannotBeComparedAreInputErrors) {
   const fs::path dir = FreshDir("mapdiff_errors");
   const fs::path a = WriteMap(dir / "a", 10, 10, 3);
