@@ -16,6 +16,7 @@
 #include "plan_input.hpp"
 #include "progress.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/runners/grid/grid_explore.hpp"
 #include "slamkit/sim/maze_route.hpp"
@@ -61,6 +62,7 @@ void WriteOutputs(const std::filesystem::path& dir, const GridExploreOptions& o,
                   const GridExploreResult& r) {
   WriteGridOutputs(dir, r.slam, r.odometry, "explored map");
   WriteTumTrajectory(dir / "truth.tum", r.truth);
+  WriteOccupancyGridPgm(dir / "truth.pgm", r.truth_map);  // the plan's true map, for mapdiff
   WriteJson(dir / "metrics.json",
             GridExploreMetrics(r, o.explore, o.sim_seed, o.slam, PeakRssMib()));
   if (!o.explore.predict) return;

@@ -57,7 +57,8 @@ def main():
     for mode, runs in sorted(results.items()):
         ms = [m for _, m, _ in runs]
         print(f"predict {mode}: {len(ms)} runs, finished {sum(m['finished'] for m in ms)}")
-        for key in ("exploration_time_s", "path_length_m", "ate_rmse_m"):
+        for key in ("exploration_time_s", "path_length_m", "ate_rmse_m", "odometry_ate_rmse_m",
+                    "closest_wall_m"):
             print(f"  {key:<28} {spread([m[key] for m in ms])}")
         for which in ("explored_vs_truth", "combined_vs_truth"):
             for key in ("dice_occupied", "cell_accuracy"):

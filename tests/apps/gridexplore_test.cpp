@@ -36,7 +36,8 @@ TEST(GridExplore, ExploresARoomToTheEndAndWritesTheContractFiles) {
                         " --start 1.5,1.5,0 --predict on --particles 5 --max-time 600 "
                         "--odom-sigma-omega 0.1 --out " + (dir / "out").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* file : {"trajectory.txt", "trajectory.tum", "truth.tum", "map.pgm", "map.yaml",
+  for (const char* file : {"trajectory.txt", "trajectory.tum", "truth.tum", "truth.pgm", "map.pgm",
+                           "map.yaml",
                            "map.png", "metrics.json", "hypotheses.csv", "predicted.pgm",
                            "predicted.yaml", "map_predicted.png"}) {
     EXPECT_TRUE(fs::exists(dir / "out" / file)) << file;
