@@ -10,6 +10,7 @@
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/rng.hpp"
 #include "slamkit/features/grid_structure.hpp"
+#include "common/grid_drawing.hpp"
 
 namespace slamkit {
 namespace {
@@ -23,19 +24,7 @@ OccupancyGrid MakeGrid() {
   return OccupancyGrid(p);
 }
 
-// Adds `log_odds` once to every cell the segment a–b passes through (sampled every 1/20 cell):
-// the segment's supercover, symmetric about it, as a wall seen by a laser would be.
-void DrawWall(OccupancyGrid& grid, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-              float log_odds = 3.0f) {
-  const int n = static_cast<int>(std::ceil((b - a).norm() / (kRes / 20.0))) + 1;
-  CellIndex last{0, 0};
-  for (int i = 0; i <= n; ++i) {
-    const CellIndex c = grid.WorldToCell(a + (b - a) * (double(i) / n));
-    if (i > 0 && c == last) continue;
-    grid.Update(c, log_odds);
-    last = c;
-  }
-}
+using testing::DrawWall;
 
 // A w × h room with its lower-left corner at `origin`, turned by `angle_rad` about it; its corners
 // counter-clockwise from the origin.

@@ -1,0 +1,349 @@
+#include "slamkit/planning/grid_paths.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace slamkit::grid_paths_test {
+namespace {
+
+constexpr double kRes = 0.1;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Cells x0..x1 × y0..y1 made '#' occupied, '.' free or ' ' unknown.
+void Fill(OccupancyGrid& grid, int x0, int y0, int x1, int y1, char kind) {
+  const float target = kind == '#' ? 3.0f : kind == '.' ? -3.0f : 0.0f;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) grid.Update({x, y}, target - grid.LogOdds({x, y}));
+  }
+}
+
+template <class F>
+void ForEachCell(int w, int h, const F& f) {  // cells 0..w-1 × 0..h-1
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) f(CellIndex{x, y});
+  }
+}
+
+// Free cells 1..w-2 × 1..h-2 inside a one-cell wall.
+OccupancyGrid Room(int w, int h) {
+  OccupancyGrid grid(OccupancyGridParams{kRes});
+  Fill(grid, 0, 0, w - 1, h - 1, '#');
+  Fill(grid, 1, 1, w - 2, h - 2, '.');
+  return grid;
+}
+
+Eigen::Vector2d Centre(const CellIndex& c) {
+  return {(c.x + 0.5) * kRes, (c.y + 0.5) * kRes};
+}
+
+double Octile(const CellIndex& a, const CellIndex& b) {
+  const int dx = std::abs(a.x - b.x), dy = std::abs(a.y - b.y);
+  return kRes * (std::max(dx, dy) + (std::sqrt(2.0) - 1.0) * std::min(dx, dy));
+}
+
+// The distance from a cell's centre to the nearest point of an occupied square, by brute force.
+double ExactClearance(const OccupancyGrid& grid, const CellIndex& c) {
+  double best = kInf;
+  for (int y = grid.min_cell().y; y <= grid.max_cell().y; ++y) {
+    for (int x = grid.min_cell().x; x <= grid.max_cell().x; ++x) {
+      if (!(grid.Probability({x, y}) > 0.65)) continue;
+      const double ex = std::max(std::abs(x - c.x) - 0.5, 0.0);
+      const double ey = std::max(std::abs(y - c.y) - 0.5, 0.0);
+      best = std::min(best, kRes * std::hypot(ex, ey));
+    }
+  }
+  return best;
+}
+
+// The per-metre penalty as GridPathParams documents it.
+double Penalty(double clearance, const GridPathParams& p) {
+  if (clearance < p.robot_radius_m) return p.clearance_cost_weight;
+  if (clearance >= p.robot_radius_m + p.clearance_m) return 0.0;
+  return p.clearance_cost_weight * (1.0 - (clearance - p.robot_radius_m) / p.clearance_m);
+}
+
+double StepCost(const GridPathCosts& costs, const CellIndex& a, const CellIndex& b) {
+  const double length = (a.x != b.x && a.y != b.y) ? kRes * std::sqrt(2.0) : kRes;
+  return length * (1.0 + 0.5 * (Penalty(costs.Clearance(a), costs.params()) +
+                                Penalty(costs.Clearance(b), costs.params())));
+}
+
+TEST(GridPathCosts, ClearanceIsTheDistanceToTheNearestOccupiedSquare) {
+  OccupancyGrid grid = Room(40, 30);
+  Fill(grid, 12, 10, 15, 13, '#');  // a pillar, with cells inside it
+  const GridPathParams params;      // reach 0.7 m
+  const double reach = params.robot_radius_m + params.clearance_m;
+  const GridPathCosts costs = GridPathCosts::From(grid, Centre({5, 20}), params);
+  int checked_near = 0, checked_far = 0;
+  ForEachCell(40, 30, [&](const CellIndex& c) {
+    const double exact = ExactClearance(grid, c);
+    if (exact < reach - 1e-9) {
+      EXPECT_NEAR(costs.Clearance(c), exact, 1e-6) << c.x << ", " << c.y;
+      ++checked_near;
+    } else if (exact > reach + 1e-9) {
+      EXPECT_EQ(costs.Clearance(c), kInf) << c.x << ", " << c.y;
+      ++checked_far;
+    }
+    EXPECT_EQ(costs.IsFree(c), grid.Probability(c) < 0.35);
+    EXPECT_EQ(costs.Traversable(c), costs.IsFree(c) && exact >= params.robot_radius_m - 1e-9);
+  });
+  EXPECT_GT(checked_near, 100);
+  EXPECT_GT(checked_far, 10);
+}
+
+TEST(GridPathCosts, CostAwayFromWallsIsTheOctileDistance) {
+  const OccupancyGrid grid = Room(40, 36);
+  const CellIndex start{20, 18};
+  const GridPathParams params;
+  const GridPathCosts costs = GridPathCosts::From(grid, Centre(start), params);
+  EXPECT_EQ(costs.start(), start);
+  int core = 0, penalised = 0;
+  ForEachCell(40, 36, [&](const CellIndex& c) {
+    // The room is convex: every traversable cell is reachable, no other.
+    EXPECT_EQ(costs.Reachable(c), costs.Traversable(c)) << c.x << ", " << c.y;
+    if (!costs.Reachable(c)) return;
+    if (std::isinf(costs.Clearance(c))) {  // the core, free of penalty, is a rectangle
+      EXPECT_NEAR(costs.Cost(c), Octile(start, c), 1e-9) << c.x << ", " << c.y;
+      ++core;
+    } else {  // the last step into a cell near a wall pays a penalty
+      EXPECT_GT(costs.Cost(c), Octile(start, c) + 1e-6) << c.x << ", " << c.y;
+      ++penalised;
+    }
+  });
+  EXPECT_GT(core, 300);
+  EXPECT_GT(penalised, 100);
+}
+
+// Two rooms split by a wall at y = 20 with a gap of `gap` cells centred on x = 20.
+OccupancyGrid SplitRoom(int gap) {
+  OccupancyGrid grid = Room(41, 41);
+  Fill(grid, 1, 20, 39, 20, '#');
+  if (gap > 0) Fill(grid, 20 - gap / 2, 20, 20 - gap / 2 + gap - 1, 20, '.');
+  return grid;
+}
+
+TEST(GridPathCosts, AGapNarrowerThanTheRobotBlocksAndOneCellWiderPasses) {
+  const CellIndex start{20, 8}, goal{20, 32};
+  for (int k = 2; k <= 8; ++k) {  // robot_radius_m = k / 2 cells
+    GridPathParams params;
+    params.robot_radius_m = 0.05 * k;
+    params.clearance_m = 0.2;
+    for (int gap = 0; gap <= 12; ++gap) {
+      const GridPathCosts costs = GridPathCosts::From(SplitRoom(gap), Centre(start), params);
+      ASSERT_TRUE(costs.Traversable(start));
+      ASSERT_TRUE(costs.Traversable(goal));
+      if (gap < k) {  // gap × 0.1 < 2 × radius
+        EXPECT_FALSE(costs.Reachable(goal)) << "radius " << params.robot_radius_m << " gap " << gap;
+        EXPECT_TRUE(costs.PathTo(goal).empty());
+      } else if (gap >= k + 1) {  // at least 2 × radius + one cell
+        EXPECT_TRUE(costs.Reachable(goal)) << "radius " << params.robot_radius_m << " gap " << gap;
+        for (const CellIndex& c : costs.PathTo(goal)) EXPECT_TRUE(costs.Traversable(c));
+      }
+    }
+  }
+}
+
+TEST(GridPathCosts, PathToIsAnOptimalChainOfNeighboursKeepingClear) {
+  // A wall from the bottom up to y = 27 between start and goal: the path goes round its end.
+  OccupancyGrid grid = Room(50, 40);
+  Fill(grid, 25, 1, 25, 27, '#');
+  const CellIndex start{10, 10}, goal{40, 10};
+  const GridPathCosts costs = GridPathCosts::From(grid, Centre(start), GridPathParams{});
+  const std::vector<CellIndex> path = costs.PathTo(goal);
+  ASSERT_GE(path.size(), 2u);
+  EXPECT_EQ(path.front(), start);
+  EXPECT_EQ(path.back(), goal);
+  double along = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    ASSERT_EQ(std::max(std::abs(path[i].x - path[i - 1].x), std::abs(path[i].y - path[i - 1].y)),
+              1);
+    EXPECT_TRUE(costs.Traversable(path[i]));
+    along += StepCost(costs, path[i - 1], path[i]);
+    EXPECT_NEAR(costs.Cost(path[i]), along, 1e-9);
+  }
+  EXPECT_GT(path[path.size() / 2].y, 27);  // over the wall's end
+  // Optimality: no step between traversable cells leads to a cheaper cost (Bellman).
+  ForEachCell(50, 40, [&](const CellIndex& c) {
+    if (!costs.Reachable(c) || !costs.Traversable(c)) return;
+    ForEachCell(3, 3, [&](const CellIndex& d) {
+      const CellIndex n{c.x + d.x - 1, c.y + d.y - 1};
+      if (n == c || !costs.Traversable(n)) return;
+      EXPECT_LE(costs.Cost(n), costs.Cost(c) + StepCost(costs, c, n) + 1e-9);
+    });
+  });
+}
+
+TEST(GridPathCosts, UnreachableCellsCostInfinityAndHaveNoPath) {
+  OccupancyGrid grid = Room(40, 30);
+  Fill(grid, 25, 5, 35, 20, '#');  // a closed box ...
+  Fill(grid, 26, 6, 34, 19, '.');  // ... with free space inside
+  Fill(grid, 5, 20, 8, 23, ' ');   // an unknown patch in the open room
+  const GridPathCosts costs = GridPathCosts::From(grid, Centre({10, 10}), GridPathParams{});
+  ASSERT_TRUE(costs.Traversable({30, 12}));
+  for (const CellIndex c : {CellIndex{30, 12}, CellIndex{6, 21}, CellIndex{0, 0}, CellIndex{25, 10},
+                            CellIndex{500, -300}}) {
+    EXPECT_FALSE(costs.Reachable(c)) << c.x << ", " << c.y;
+    EXPECT_EQ(costs.Cost(c), kInf);
+    EXPECT_TRUE(costs.PathTo(c).empty());
+  }
+  EXPECT_TRUE(costs.Reachable({15, 15}));
+}
+
+TEST(GridPathCosts, AStartInTheInflationOnlyMovesAwayFromTheWall) {
+  const OccupancyGrid grid = Room(40, 40);
+  const CellIndex start{1, 20};  // against the left wall
+  const GridPathCosts costs = GridPathCosts::From(grid, Centre(start), GridPathParams{});
+  EXPECT_EQ(costs.Cost(start), 0.0);
+  EXPECT_EQ(costs.PathTo(start), std::vector<CellIndex>{start});
+  const std::vector<CellIndex> path = costs.PathTo({20, 20});
+  ASSERT_FALSE(path.empty());
+  for (std::size_t i = 1; i < path.size() && costs.Clearance(path[i]) < 0.3; ++i) {
+    EXPECT_GT(costs.Clearance(path[i]), costs.Clearance(path[i - 1]));
+  }
+  // Along the wall, inside the inflation, nothing is reachable.
+  for (const int y : {2, 10, 17, 23, 30, 38}) EXPECT_FALSE(costs.Reachable({1, y})) << y;
+  // Before the first scan the start alone is reachable, whatever it holds.
+  const GridPathCosts empty =
+      GridPathCosts::From(OccupancyGrid(OccupancyGridParams{kRes}), {1.23, -4.56});
+  EXPECT_EQ(empty.Cost(empty.start()), 0.0);
+  EXPECT_FALSE(empty.Reachable({empty.start().x + 1, empty.start().y}));
+}
+
+// Whether every point of the segment a-b lies over a free cell (sampled finely: a leg that clips
+// the corner of a cell is caught, which a digital line would miss).
+bool SegmentOverFreeCells(const GridPathCosts& costs, const Eigen::Vector2d& a,
+                          const Eigen::Vector2d& b) {
+  const int n = static_cast<int>(std::ceil((b - a).norm() / (0.01 * kRes))) + 1;
+  for (int i = 0; i <= n; ++i) {
+    const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / n);
+    if (!costs.IsFree({static_cast<int>(std::floor(p.x() / kRes)),
+                       static_cast<int>(std::floor(p.y() / kRes))})) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(GridPathsSimplify, LegsAreShortKeepThePathsClearanceAndPassOverFreeCells) {
+  OccupancyGrid grid = Room(50, 40);
+  Fill(grid, 25, 1, 25, 27, '#');   // a wall to go round
+  Fill(grid, 12, 18, 16, 24, ' ');  // an unknown patch: not inflated, yet never to be crossed
+  const GridPathParams params;
+  const double r = params.robot_radius_m, most = r + params.clearance_m;
+  const GridPathCosts costs = GridPathCosts::From(grid, Centre({10, 10}), params);
+  for (const CellIndex goal : {CellIndex{40, 10}, CellIndex{14, 30}, CellIndex{20, 21},
+                               CellIndex{45, 35}, CellIndex{5, 35}}) {
+    const std::vector<CellIndex> path = costs.PathTo(goal);
+    ASSERT_FALSE(path.empty());
+    for (const double max_segment : {2.0, 0.5}) {
+      const std::vector<Eigen::Vector2d> w = SimplifyPath(costs, path, max_segment);
+      ASSERT_GE(w.size(), 2u);
+      EXPECT_LT((w.front() - Centre(path.front())).norm(), 1e-9);
+      EXPECT_LT((w.back() - Centre(path.back())).norm(), 1e-9);
+      std::size_t a = 0;  // the path index of w[i - 1]
+      for (std::size_t i = 1; i < w.size(); ++i) {
+        EXPECT_LE((w[i] - w[i - 1]).norm(), max_segment + 1e-9);
+        EXPECT_TRUE(SegmentOverFreeCells(costs, w[i - 1], w[i]))
+            << "goal " << goal.x << ", " << goal.y << " leg " << i;
+        std::size_t b = a + 1;  // waypoints are path cells, in order
+        while (b < path.size() && (Centre(path[b]) - w[i]).norm() > 1e-9) ++b;
+        ASSERT_LT(b, path.size());
+        double replaced = kInf;  // the least clearance of the cells the leg replaces
+        for (std::size_t j = a + 1; j <= b; ++j)
+          replaced = std::min(replaced, costs.Clearance(path[j]));
+        for (const CellIndex& c : RayCells(path[a], path[b])) {
+          if (c == path[a]) continue;
+          EXPECT_GE(costs.Clearance(c), std::clamp(replaced, r, most));
+        }
+        a = b;
+      }
+    }
+  }
+  // In open space a path is one straight leg, cut into legs of at most max_segment_m.
+  const GridPathCosts open = GridPathCosts::From(Room(40, 36), Centre({15, 15}), params);
+  const std::vector<CellIndex> diagonal = open.PathTo({25, 22});
+  EXPECT_EQ(SimplifyPath(open, diagonal, 2.0).size(), 2u);
+  EXPECT_GE(SimplifyPath(open, diagonal, 0.5).size(), 4u);  // 1.22 m in legs of 0.5 m or less
+  EXPECT_TRUE(SimplifyPath(open, {}).empty());
+}
+
+// A 3 × 3 m room entered at (22, 15), with openings to unexplored corridors at the top and the
+// bottom, and a pocket beyond its closed right wall: nearer in a straight line, unreachable.
+OccupancyGrid FrontierRooms() {
+  OccupancyGrid grid = Room(30, 30);
+  Fill(grid, 5, 29, 14, 35, '.');
+  Fill(grid, 20, -6, 27, 0, '.');
+  Fill(grid, 30, 10, 32, 20, '.');
+  return grid;
+}
+
+TEST(GridPathsFrontier, PicksTheCheapestReachableCellAndHonoursSkip) {
+  const OccupancyGrid grid = FrontierRooms();
+  const std::vector<FrontierRegion> regions = FindFrontierRegions(grid);
+  ASSERT_EQ(regions.size(), 3u);
+  const Eigen::Vector2d start = Centre({22, 15});
+  const GridPathCosts costs = GridPathCosts::From(grid, start);
+  const auto cheapest = [&](const FrontierSkip& skip) {  // by brute force: region, cost
+    std::pair<int, double> best = {-1, kInf};
+    for (int i = 0; i < static_cast<int>(regions.size()); ++i) {
+      if (skip && skip(regions[i])) continue;
+      for (const CellIndex& c : regions[i].cells) {
+        if (costs.Cost(c) < best.second) best = {i, costs.Cost(c)};
+      }
+    }
+    return best;
+  };
+  const std::optional<FrontierTarget> target = NearestReachableFrontier(grid, regions, start);
+  ASSERT_TRUE(target);
+  EXPECT_EQ(target->region, cheapest({}).first);
+  EXPECT_NEAR(target->cost_m, cheapest({}).second, 1e-12);
+  EXPECT_EQ(target->cost_m, costs.Cost(target->cell));
+  const std::vector<CellIndex>& cells = regions[target->region].cells;
+  EXPECT_NE(std::find(cells.begin(), cells.end(), target->cell), cells.end());
+  EXPECT_EQ(target->waypoints_m, SimplifyPath(costs, costs.PathTo(target->cell)));
+  // The pocket's frontier is nearer in a straight line, but unreachable.
+  ASSERT_TRUE(IsFrontierCell(grid, {32, 15}, GridFrontierParams{}));
+  EXPECT_FALSE(costs.Reachable({32, 15}));
+  EXPECT_LT((Centre({32, 15}) - start).norm(), (Centre(target->cell) - start).norm());
+  // Skipping the chosen region gives the other reachable one; skipping all gives none.
+  const Eigen::Vector2d chosen = regions[target->region].centroid_m;
+  const FrontierSkip skip_chosen = [&](const FrontierRegion& r) {
+    return (r.centroid_m - chosen).norm() < 1e-9;
+  };
+  const std::optional<FrontierTarget> second =
+      NearestReachableFrontier(costs, regions, skip_chosen);
+  ASSERT_TRUE(second);
+  EXPECT_NE(second->region, target->region);
+  EXPECT_EQ(second->region, cheapest(skip_chosen).first);
+  EXPECT_GE(second->cost_m, target->cost_m);
+  EXPECT_FALSE(
+      NearestReachableFrontier(costs, regions, [](const FrontierRegion&) { return true; }));
+}
+
+TEST(GridPathCosts, InvalidParamsThrow) {
+  const OccupancyGrid grid = Room(10, 10);
+  const GridPathParams bad[] = {{.robot_radius_m = -0.1},        {.clearance_m = -0.1},
+                                {.clearance_cost_weight = -1.0}, {.free_probability = 0.0},
+                                {.free_probability = 0.7},       {.occupied_probability = 1.0},
+                                {.robot_radius_m = std::nan("")}};
+  for (const GridPathParams& p : bad) {
+    EXPECT_THROW(GridPathCosts::From(grid, {0.5, 0.5}, p), std::invalid_argument);
+    EXPECT_THROW(NearestReachableFrontier(grid, {}, {0.5, 0.5}, p), std::invalid_argument);
+  }
+  const GridPathParams edge = {.robot_radius_m = 0.0,
+                               .clearance_m = 0.0,
+                               .clearance_cost_weight = 0.0,
+                               .free_probability = 0.5,
+                               .occupied_probability = 0.5};
+  EXPECT_NO_THROW(GridPathCosts::From(grid, {0.5, 0.5}, edge));
+}
+
+}  // namespace
+}  // namespace slamkit::grid_paths_test
