@@ -163,6 +163,9 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
   cmd->add_option("--similarity-threshold", o->prediction.predictor.similarity_threshold,
                   "with --predict on: least Psi (Eq. 5) for a hypothesis")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--region-diameter", o->prediction.predictor.region_diameter_m,
+                  "d: the prediction compares and fills the disc of this diameter around the "
+                  "target [m]")->check(CLI::Range(1.0, 100.0))->capture_default_str();
   cmd->add_option("--prediction-delay-scans", o->prediction.prediction.deterministic_delay_scans,
                   "with --predict on: take each prediction exactly N scans after its request "
                   "(0: as soon as the thread has it; not reproducible bit for bit)")

@@ -116,6 +116,9 @@ void AddExploreOptions(CLI::App* cmd, GridExploreOptions& o) {
   cmd->add_option("--similarity-threshold", o.explore.predictor.similarity_threshold,
                   "least Psi (Eq. 5) for a hypothesis")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--region-diameter", o.explore.predictor.region_diameter_m,
+                  "d: the prediction compares and fills the disc of this diameter around the "
+                  "target [m]")->check(CLI::Range(1.0, 100.0))->capture_default_str();
   cmd->add_option("--prediction-delay-scans", o.explore.prediction.deterministic_delay_scans,
                   "take each prediction exactly N scans after its request (0: when the thread "
                   "has it, not reproducible)")->check(CLI::Range(0, 100000))->capture_default_str();
