@@ -1,16 +1,19 @@
 // Throughput of occupancy-grid RBPF SLAM on the start of the Intel Research Lab log (scans per
-// second for 10, 30 and 100 particles), and of the scan matcher alone on a map built from it.
+// second for 10, 30 and 100 particles), and of the scan matcher and P-SLAM's predictor alone on a
+// map built from it.
 
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <benchmark/benchmark.h>
 
 #include "slamkit/filters/grid/rbpf_grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/planning/structure_predictor.hpp"
 
 namespace slamkit {
 namespace {
@@ -125,12 +128,41 @@ void BM_EvaluatePose(benchmark::State& state) {
   }
 }
 
+// P-SLAM's predictor on the map built above, as its thread runs it on a log (SPEC S4): arg 0
+// chooses the target only (the nearest reachable frontier from the last pose: frontier regions
+// and Dijkstra over the map), 1 predicts at that target only (lines, corners, the alignments and
+// Ψ), 2 does both, as MakeStructurePredictor's call does. BM_ScanMatcher/0, one particle's match,
+// is the reference in the same run.
+void BM_StructurePredictor(benchmark::State& state) {
+  const BuiltMap* built = IntelMap();
+  if (!built) return state.SkipWithError("intel.clf not found");
+  const StructurePredictorParams params;
+  const Pose2 pose = built->path.back().pose;
+  const std::optional<Eigen::Vector2d> target = ChoosePredictionTarget(built->map, pose, params);
+  if (!target) return state.SkipWithError("no reachable frontier");
+  const StructurePredictor predictor = MakeStructurePredictor(params);
+  const StructurePredictionRequest request{0, 0.0, built->map, pose, std::nullopt};
+  int alignments = 0;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      benchmark::DoNotOptimize(ChoosePredictionTarget(built->map, pose, params));
+    } else if (state.range(0) == 1) {
+      const std::optional<PredictedStructure> p = PredictStructure(built->map, *target, params);
+      alignments = p ? p->hypothesis.alignments : 0;
+    } else {
+      benchmark::DoNotOptimize(predictor(request));
+    }
+  }
+  state.counters["alignments"] = alignments;
+}
+
 BENCHMARK(BM_GridSlamScans)
     ->Args({10, 1})->Args({30, 1})->Args({100, 1})->Args({30, 0})
     ->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_ScanMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EvaluatePose)
     ->Args({0, 1})->Args({1, 1})->Args({0, 3})->Args({1, 3})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StructurePredictor)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace slamkit

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <future>
 
 #include "slamkit/sim/laser_sim.hpp"
 
@@ -111,6 +112,38 @@ TEST(PredictiveGridSlam, WithoutPredictionsIsTheGridFilterBitForBit) {
     // The deterministic schedule: 3 scans after the request, or at the Flush after the last scan.
     EXPECT_EQ(r.install_scan, std::min(r.request_scan + 3, last_scan)) << r.request_scan;
   }
+}
+
+// SPEC S4: the prediction runs on its own thread and the filter never waits for it. The
+// predictor here blocks until the test releases it, after every scan has been processed: a
+// filter that waited would never get there (the test would hang and time out).
+TEST(PredictiveGridSlam, ASlowPredictorNeverBlocksAnUpdate) {
+  const std::vector<LaserScan> scans = DriveDownTheCorridor();
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::atomic<int> calls = 0;
+  PredictiveGridSlamParams params;
+  params.automatic_targets = false;
+  PredictiveGridSlam slam(SmallFilter(), params,
+                          [released, &calls](const StructurePredictionRequest&) {
+                            ++calls;
+                            released.wait();
+                            return std::optional<PredictedStructure>();
+                          });
+  slam.ProcessScan(scans.front());
+  slam.RequestPrediction({8.0, 0.0});
+  slam.RequestPrediction({9.0, 0.0});  // queued behind the one in flight
+  int updates = 0;
+  for (std::size_t k = 1; k < scans.size(); ++k) updates += slam.ProcessScan(scans[k]);
+  EXPECT_GT(updates, 10);
+  ASSERT_EQ(slam.records().size(), 1u);
+  EXPECT_EQ(slam.records()[0].fate, HypothesisFate::kInFlight);
+  release.set_value();
+  slam.Flush();  // takes the first, which submits the queued one; the second Flush takes it
+  slam.Flush();
+  EXPECT_EQ(calls.load(), 2);
+  ASSERT_EQ(slam.records().size(), 2u);
+  for (const HypothesisRecord& r : slam.records()) EXPECT_EQ(r.fate, HypothesisFate::kNoStructure);
 }
 
 struct Outcome {
