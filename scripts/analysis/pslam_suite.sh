@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # P-SLAM on every log of the CARMEN suite (configs/carmen_suite.yaml), prediction off and on, for
 # the seeds given: `slamkit grid` per log, its ATE (or relations for Intel) from metrics.json.
-# usage: scripts/analysis/pslam_suite.sh SLAMKIT OUT_DIR [SEEDS...]   (default seed 1)
+# usage: [DELAY=N] scripts/analysis/pslam_suite.sh SLAMKIT OUT_DIR [SEEDS...]   (default seed 1;
+# DELAY: --prediction-delay-scans, default 0: the filter never waits, runs not bit-reproducible)
 set -euo pipefail
 slamkit=$1 out=$2
 shift 2
@@ -23,7 +24,7 @@ for run in "${runs[@]}"; do
       mkdir -p "$(dirname "$dir")"
       # shellcheck disable=SC2086
       "$slamkit" grid --log "$d/$log" $scoring --seed "$seed" --predict "$predict" \
-        --prediction-delay-scans 5 --out "$dir" >"$dir.txt" 2>&1 || { echo "$name,$seed,$predict,failed"; continue; }
+        --prediction-delay-scans "${DELAY:-0}" --out "$dir" >"$dir.txt" 2>&1 || { echo "$name,$seed,$predict,failed"; continue; }
       python3 - "$dir/metrics.json" "$name" "$seed" "$predict" <<'PY'
 import json, sys
 m = json.load(open(sys.argv[1]))
