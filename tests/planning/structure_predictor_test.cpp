@@ -1,8 +1,10 @@
 #include "slamkit/planning/structure_predictor.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -11,7 +13,7 @@
 #include "slamkit/core/rng.hpp"
 #include "common/grid_drawing.hpp"
 
-namespace slamkit {
+namespace slamkit::structure_predictor_test {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -45,12 +47,6 @@ Corners DrawRoom(OccupancyGrid& grid, const Eigen::Vector2d& origin, double angl
   return c;
 }
 
-int KnownCells(const OccupancyGrid& g) {
-  int n = 0;
-  ForEachKnownCell(g, [&](const CellIndex&, OccupancyGrid::CellValue) { ++n; });
-  return n;
-}
-
 bool OccupiedWithin1(const OccupancyGrid& g, const CellIndex& c) {
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
@@ -62,7 +58,8 @@ bool OccupiedWithin1(const OccupancyGrid& g, const CellIndex& c) {
 
 // Room A (a_w × a_h, a reference explored in full) and room B (6 × 4, a copy of the 6 × 4 room
 // turned by `turn`) explored up to kSplit along its first wall; f a free cell on B's frontier.
-// Everything is moved by `frame`. `truth` holds both rooms complete.
+// Everything is moved by `frame`. `truth` holds both rooms complete. With `hall`, A stands in an
+// explored hall of free floor 16 m wide, which reaches beyond the corners of the box around f.
 struct Scene {
   OccupancyGrid truth = MakeGrid();
   OccupancyGrid map = MakeGrid();
@@ -71,8 +68,11 @@ struct Scene {
 };
 
 Scene MakeScene(double turn, const Eigen::Vector2d& b_origin, const Pose2& frame = {},
-                double a_w = 6.0, double a_h = 4.0) {
+                double a_w = 6.0, double a_h = 4.0, bool hall = false) {
   Scene s;
+  for (int y = -40; hall && y < 100; ++y) {
+    for (int x = -40; x < 120; ++x) s.truth.Update({x, y}, -2.0f);
+  }
   s.a = DrawRoom(s.truth, frame.TransformFrom({1.05, 1.05}), frame.theta(), a_w, a_h);
   const Eigen::Vector2d o = frame.TransformFrom(b_origin);
   const double angle = frame.theta() + turn;
@@ -117,18 +117,25 @@ TEST(StructurePredictor, AlignedSimilarityIsOneForTheRightAlignmentAndLowForWron
   const Pose2 right = ControlPointAlignment(s.b[0], s.a[0], kPi / 2.0);
   EXPECT_GT(AlignedSimilarity(s.truth, centre_b, 5.0, right, p), 0.95);
   EXPECT_GT(AlignedSimilarity(s.truth, centre_a, 5.0, right.Inverse(), p), 0.95);
+  // One cell off along both axes: every wall lands beside its match, which the one-cell tolerance
+  // accepts and Eq. 5 exactly (tolerance 0) does not.
+  const Pose2 one_cell =
+      ControlPointAlignment(s.b[0] + Eigen::Vector2d(kRes, kRes), s.a[0], kPi / 2.0);
+  StructurePredictorParams exact = p;
+  exact.tolerance_cells = 0;
+  EXPECT_GT(AlignedSimilarity(s.truth, centre_b, 5.0, one_cell, p), 0.95);
+  EXPECT_LT(AlignedSimilarity(s.truth, centre_b, 5.0, one_cell, exact), 0.1);
+  EXPECT_GT(AlignedSimilarity(s.truth, centre_b, 5.0, right, exact), 0.95);
   // The same corners without the turn, the turn the wrong way, and the right one off by 0.5 m.
-  EXPECT_LT(AlignedSimilarity(s.truth, centre_b, 5.0, ControlPointAlignment(s.b[0], s.a[0], 0.0),
-                              p), 0.5);
-  EXPECT_LT(AlignedSimilarity(s.truth, centre_b, 5.0,
-                              ControlPointAlignment(s.b[0], s.a[0], -kPi / 2.0), p), 0.5);
-  EXPECT_LT(AlignedSimilarity(s.truth, centre_b, 5.0,
-                              ControlPointAlignment(s.b[0] + Eigen::Vector2d(0.5, 0.5),
-                                                    s.a[0], kPi / 2.0), p), 0.5);
+  for (const auto& [shift, theta] : {std::pair{0.0, 0.0}, {0.0, -kPi / 2.0}, {0.5, kPi / 2.0}}) {
+    const Pose2 wrong =
+        ControlPointAlignment(s.b[0] + Eigen::Vector2d(shift, shift), s.a[0], theta);
+    EXPECT_LT(AlignedSimilarity(s.truth, centre_b, 5.0, wrong, p), 0.5) << shift << " " << theta;
+  }
 }
 
 // The properties of an accepted prediction for a partial copy of a fully explored room.
-void ExpectPredictsTheMissingHalf(const Scene& s, double turn) {
+void ExpectPredictsTheMissingHalf(const Scene& s) {
   const StructurePredictorParams p;
   const double radius = 0.5 * p.region_diameter_m;
   const std::optional<PredictedStructure> r = PredictStructure(s.map, s.f, p);
@@ -144,10 +151,11 @@ void ExpectPredictsTheMissingHalf(const Scene& s, double turn) {
   const Pose2 g = ControlPointAlignment(h.control_point_m, h.reference_point_m, h.rotation_rad);
   for (const Eigen::Vector2d& a : s.a) {
     double nearest = 1e9;
-    for (const Eigen::Vector2d& b : s.b) nearest = std::min(nearest, (g.TransformFrom(a) - b).norm());
-    EXPECT_LT(nearest, 0.2) << "turn " << turn;
+    const Eigen::Vector2d moved = g.TransformFrom(a);
+    for (const Eigen::Vector2d& b : s.b) nearest = std::min(nearest, (b - moved).norm());
+    EXPECT_LT(nearest, 0.2);
   }
-  int known = 0, occupied = 0, free_on_free = 0;
+  int known = 0, occupied = 0, free_known = 0, free_on_free = 0;
   ForEachKnownCell(h.cells, [&](const CellIndex& c, OccupancyGrid::CellValue) {
     ++known;
     EXPECT_FALSE(s.map.IsKnown(c));
@@ -156,12 +164,14 @@ void ExpectPredictsTheMissingHalf(const Scene& s, double turn) {
       ++occupied;
       EXPECT_TRUE(OccupiedWithin1(s.truth, c)) << c.x << " " << c.y;  // on a missing wall
     } else {
+      free_known += s.truth.IsKnown(c);  // B's outside is unknown in the truth too
       free_on_free += s.truth.LogOdds(c) < 0.0f;
     }
   });
   EXPECT_EQ(known, h.predicted_cells);
   EXPECT_EQ(occupied, h.occupied_cells);
-  EXPECT_GT(free_on_free, 0.95 * (known - occupied));
+  EXPECT_GT(free_known, 500);  // B's missing floor, 2.9 × 3.9 m
+  EXPECT_GT(free_on_free, 0.95 * free_known);
   // Nearly every missing wall cell of B is predicted (within a cell).
   int missing = 0, found = 0;
   ForEachKnownCell(s.truth, [&](const CellIndex& c, OccupancyGrid::CellValue) {
@@ -175,11 +185,12 @@ void ExpectPredictsTheMissingHalf(const Scene& s, double turn) {
 }
 
 TEST(StructurePredictor, PredictsTheUnexploredHalfOfACopiedRoom) {
-  ExpectPredictsTheMissingHalf(MakeScene(0.0, {15.05, 1.05}), 0.0);
+  ExpectPredictsTheMissingHalf(MakeScene(0.0, {15.05, 1.05}));
+  ExpectPredictsTheMissingHalf(MakeScene(0.0, {15.05, 1.05}, Pose2(), 6.0, 4.0, true));
 }
 
 TEST(StructurePredictor, PredictsTheUnexploredHalfOfACopyTurnedByAQuarterTurn) {
-  ExpectPredictsTheMissingHalf(MakeScene(kPi / 2.0, {24.05, 1.05}), kPi / 2.0);
+  ExpectPredictsTheMissingHalf(MakeScene(kPi / 2.0, {24.05, 1.05}));
 }
 
 TEST(StructurePredictor, NoControlPointOrNoOtherCornerGivesNone) {
@@ -191,9 +202,7 @@ TEST(StructurePredictor, NoControlPointOrNoOtherCornerGivesNone) {
   OccupancyGrid l = MakeGrid();
   DrawWall(l, {0.05, 0.05}, {4.05, 0.05});
   DrawWall(l, {0.05, 0.05}, {0.05, 4.05});
-  for (int y = 1; y < 40; ++y) {
-    for (int x = 1; x < 40; ++x) l.Update({x, y}, -2.0f);
-  }
+  for (int i = 0; i < 39 * 39; ++i) l.Update({1 + i % 39, 1 + i / 39}, -2.0f);
   EXPECT_FALSE(PredictStructure(l, {2.05, 2.05}).has_value());
   // Too little structure around f.
   StructurePredictorParams sparse;
@@ -208,13 +217,14 @@ TEST(StructurePredictor, ADissimilarReferenceIsNotAccepted) {
   const Scene s = MakeScene(0.0, {15.05, 1.05}, Pose2(), 2.0, 2.0);
   StructurePredictorParams p;
   p.min_reference_distance_m = 5.0;
+  p.min_predicted_cells = 0;  // the threshold alone must turn it down
   const std::optional<PredictedStructure> r = PredictStructure(s.map, s.f, p);
   ASSERT_TRUE(r.has_value());
   EXPECT_FALSE(r->accepted);
   EXPECT_LT(r->hypothesis.similarity, p.similarity_threshold);
   EXPECT_GT(r->hypothesis.alignments, 0);
   EXPECT_EQ(r->hypothesis.predicted_cells, 0);
-  EXPECT_EQ(KnownCells(r->hypothesis.cells), 0);
+  EXPECT_GT(r->hypothesis.cells.min_cell().x, r->hypothesis.cells.max_cell().x);  // none written
 }
 
 TEST(StructurePredictor, BudgetBoundsTheAlignmentsTried) {
@@ -258,6 +268,13 @@ TEST(StructurePredictor, HypothesisSimilarityScoresThePredictionAgainstTheLaterM
   const std::optional<double> low = HypothesisSimilarity(h, Pose2(), wrong);
   ASSERT_TRUE(low.has_value());
   EXPECT_LT(*low, 0.3);
+  // Two partitions across B's far half that the hypothesis has as floor: the map's side of Eq. 5.
+  OccupancyGrid partitioned = s.truth;
+  DrawWall(partitioned, {19.05, 1.05}, {19.05, 5.05});
+  DrawWall(partitioned, {20.05, 1.05}, {20.05, 5.05});
+  const std::optional<double> walled = HypothesisSimilarity(h, Pose2(), partitioned);
+  ASSERT_TRUE(walled.has_value());
+  EXPECT_LT(*walled, *right - 0.15);
   // Nothing of it explored yet: the map it came from, an empty map.
   EXPECT_FALSE(HypothesisSimilarity(h, Pose2(), s.map).has_value());
   EXPECT_FALSE(HypothesisSimilarity(h, Pose2(), MakeGrid()).has_value());
@@ -267,8 +284,8 @@ TEST(StructurePredictor, MadePredictorUsesTheRequestsTargetOrTheNearestFrontier)
   const Scene s = MakeScene(0.0, {15.05, 1.05});
   const StructurePredictorParams p;
   const StructurePredictor predict = MakeStructurePredictor(p);
-  StructurePredictionRequest request{.id = 1, .t_s = 12.5, .map = s.map,
-                                     .pose = Pose2(16.5, 3.0, 0.0), .target_m = s.f};
+  StructurePredictionRequest request{
+      .id = 1, .t_s = 12.5, .map = s.map, .pose = Pose2(16.5, 3.0, 0.0), .target_m = s.f};
   const std::optional<PredictedStructure> given = predict(request);
   const std::optional<PredictedStructure> direct = PredictStructure(s.map, s.f, p);
   ASSERT_TRUE(given.has_value() && direct.has_value());
@@ -295,4 +312,4 @@ TEST(StructurePredictor, MadePredictorUsesTheRequestsTargetOrTheNearestFrontier)
 }
 
 }  // namespace
-}  // namespace slamkit
+}  // namespace slamkit::structure_predictor_test
