@@ -146,10 +146,6 @@ OccupancyGrid::Tile& OccupancyGrid::MutableTile(int tx, int ty) {
   return **slot;
 }
 
-double OccupancyGrid::Probability(const CellIndex& c) const {
-  return 1.0 - 1.0 / (1.0 + std::exp(static_cast<double>(LogOdds(c))));
-}
-
 void OccupancyGrid::UpdateSteps(const CellIndex& c, long delta_steps) {
   // Hot path (once per cell per beam). The cell is only ever read and written one int at a time:
   // callers build it with two 4-byte stores, and an 8-byte load of it (which GCC emits for

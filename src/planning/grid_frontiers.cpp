@@ -22,10 +22,53 @@ struct Window {
   }
 };
 
-bool Unexplored(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& p) {
-  if (!grid.IsKnown(c)) return true;
-  const double probability = grid.Probability(c);
-  return probability >= p.free_probability && probability <= p.occupied_probability;
+// Each stored value's class, from the probability the grid reports for it: free cells, and
+// cells that are not explored (unknown, or between the two thresholds).
+struct StepClasses {
+  std::array<char, 256> free{}, unexplored{};
+  explicit StepClasses(const GridFrontierParams& p) {
+    for (int s = -128; s <= 127; ++s) {
+      const double probability =
+          OccupancyGrid::StepsProbability(static_cast<OccupancyGrid::CellValue>(s));
+      free[s + 128] = s != 0 && probability < p.free_probability;
+      unexplored[s + 128] =
+          s == 0 || (probability >= p.free_probability && probability <= p.occupied_probability);
+    }
+  }
+  bool Free(OccupancyGrid::CellValue v) const { return free[v + 128]; }
+  bool Unexplored(OccupancyGrid::CellValue v) const { return unexplored[v + 128]; }
+  bool Frontier(const OccupancyGrid& grid, const CellIndex& c) const {
+    if (!Free(grid.LogOddsSteps(c))) return false;
+    constexpr std::array<std::array<int, 2>, 4> kSides = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+    for (const auto& [dx, dy] : kSides) {
+      if (Unexplored(grid.LogOddsSteps({c.x + dx, c.y + dy}))) return true;
+    }
+    return false;
+  }
+};
+
+// The frontier cells of the written window in raster order, marked 1 in `mask`: tiles nothing
+// was written to hold no free cell and are skipped.
+std::vector<CellIndex> MarkFrontierCells(const OccupancyGrid& grid, const Window& w,
+                                         const StepClasses& classes, std::vector<char>& mask) {
+  constexpr int kTile = OccupancyGrid::kTileSize;
+  const CellIndex lo = grid.min_cell(), hi = grid.max_cell();
+  std::vector<CellIndex> cells;
+  for (int y = lo.y; y <= hi.y; ++y) {
+    for (int x = lo.x; x <= hi.x;) {
+      const int tile_end = std::min(hi.x + 1, ((x >> OccupancyGrid::kTileBits) + 1) * kTile);
+      if (grid.TileSteps({x, y}) == nullptr) {
+        x = tile_end;
+        continue;
+      }
+      for (; x < tile_end; ++x) {
+        if (!classes.Frontier(grid, {x, y})) continue;
+        mask[w.Index(x, y)] = 1;
+        cells.push_back({x, y});
+      }
+    }
+  }
+  return cells;
 }
 
 // The 8-connected region of frontier cells holding `seed`, marked in `taken`.
@@ -55,12 +98,26 @@ FrontierRegion GrowRegion(const OccupancyGrid& grid, const Window& w, CellIndex 
 }  // namespace
 
 bool IsFrontierCell(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& p) {
-  if (!grid.IsKnown(c) || grid.Probability(c) >= p.free_probability) return false;
-  constexpr std::array<std::array<int, 2>, 4> kSides = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
-  for (const auto& [dx, dy] : kSides) {
-    if (Unexplored(grid, {c.x + dx, c.y + dy}, p)) return true;
+  return StepClasses(p).Frontier(grid, c);
+}
+
+bool InFrontierRegion(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& p) {
+  const StepClasses classes(p);
+  if (!classes.Frontier(grid, c)) return false;
+  std::vector<CellIndex> region = {c};  // small: it stops at min_region_cells
+  for (std::size_t i = 0; i < region.size() && static_cast<int>(region.size()) < p.min_region_cells;
+       ++i) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const CellIndex n{region[i].x + dx, region[i].y + dy};
+        if (std::find(region.begin(), region.end(), n) == region.end() &&
+            classes.Frontier(grid, n)) {
+          region.push_back(n);
+        }
+      }
+    }
   }
-  return false;
+  return static_cast<int>(region.size()) >= p.min_region_cells;
 }
 
 std::vector<FrontierRegion> FindFrontierRegions(const OccupancyGrid& grid,
@@ -76,20 +133,14 @@ std::vector<FrontierRegion> FindFrontierRegions(const OccupancyGrid& grid,
   if (lo.x > hi.x || lo.y > hi.y) return {};
   const Window w{lo.x - 1, lo.y - 1, hi.x - lo.x + 3, hi.y - lo.y + 3};
   std::vector<char> frontier(static_cast<std::size_t>(w.width) * w.height, 0);
-  for (int y = lo.y; y <= hi.y; ++y) {
-    for (int x = lo.x; x <= hi.x; ++x) {
-      frontier[w.Index(x, y)] = IsFrontierCell(grid, {x, y}, params);
-    }
-  }
+  const std::vector<CellIndex> cells = MarkFrontierCells(grid, w, StepClasses(params), frontier);
   std::vector<char> taken(frontier.size(), 0);
   std::vector<FrontierRegion> regions;
-  for (int y = lo.y; y <= hi.y; ++y) {
-    for (int x = lo.x; x <= hi.x; ++x) {
-      if (!frontier[w.Index(x, y)] || taken[w.Index(x, y)]) continue;
-      FrontierRegion region = GrowRegion(grid, w, {x, y}, frontier, taken);
-      if (static_cast<int>(region.cells.size()) >= params.min_region_cells) {
-        regions.push_back(std::move(region));
-      }
+  for (const CellIndex& c : cells) {
+    if (taken[w.Index(c.x, c.y)]) continue;
+    FrontierRegion region = GrowRegion(grid, w, c, frontier, taken);
+    if (static_cast<int>(region.cells.size()) >= params.min_region_cells) {
+      regions.push_back(std::move(region));
     }
   }
   std::stable_sort(regions.begin(), regions.end(), [](const auto& a, const auto& b) {

@@ -198,13 +198,17 @@ std::optional<PredictedStructure> PredictStructure(const OccupancyGrid& map,
   return result;
 }
 
+// The search stops at the first frontier cell it settles; only the frontiers it meets are looked
+// at (a map's frontiers fill the whole window where beams ran out into unknown space).
 std::optional<Eigen::Vector2d> ChoosePredictionTarget(const OccupancyGrid& map, const Pose2& pose,
                                                       const StructurePredictorParams& params) {
-  const std::vector<FrontierRegion> regions = FindFrontierRegions(map, params.frontiers);
-  const std::optional<FrontierTarget> target =
-      NearestReachableFrontier(map, regions, pose.translation(), params.paths);
-  if (!target) return std::nullopt;
-  return map.CellCenter(target->cell);
+  const auto is_goal = [&](const CellIndex& c) {
+    return InFrontierRegion(map, c, params.frontiers);
+  };
+  const GridPathCosts costs =
+      GridPathCosts::UpToNearestGoal(map, pose.translation(), is_goal, params.paths);
+  if (!costs.goal()) return std::nullopt;
+  return map.CellCenter(*costs.goal());
 }
 
 StructurePredictor MakeStructurePredictor(const StructurePredictorParams& params) {

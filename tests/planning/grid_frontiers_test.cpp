@@ -49,6 +49,37 @@ TEST(GridFrontiers, AHoleOfOneCellIsNoiseAndTwoOpeningsAreTwoRegions) {
   EXPECT_EQ(FindFrontierRegions(split_room).size(), 0u);  // both below 5 cells
 }
 
+// InFrontierRegion grows a region only until it is large enough: it must agree with the regions
+// FindFrontierRegions keeps, cell by cell, across tiles, for small and large regions.
+TEST(GridFrontiers, InFrontierRegionAgreesWithTheRegionsKept) {
+  OccupancyGrid grid(OccupancyGridParams{0.1});
+  for (int y = 0; y < 150; ++y) {
+    for (int x = 0; x < 200; ++x) grid.Update({x, y}, (x % 37 == 0 || y == 0) ? 3.0f : -3.0f);
+  }
+  for (int k = 0; k < 6; ++k) {  // holes of 1 to 6 cells in a row: regions of 4 to 14 cells
+    for (int i = 0; i <= k; ++i) grid.Update({10 + 30 * k + i, 70}, -grid.LogOdds({10 + 30 * k + i, 70}));
+  }
+  for (int x = 200; x < 260; ++x) grid.Update({x, 100 + (x - 200) / 4}, -3.0f);  // a ray out
+  for (int min_cells : {1, 5, 8, 12}) {
+    GridFrontierParams p;
+    p.min_region_cells = min_cells;
+    std::vector<char> kept(300 * 200, 0);
+    for (const FrontierRegion& r : FindFrontierRegions(grid, p)) {
+      for (const CellIndex& c : r.cells) kept[std::size_t(c.y + 10) * 300 + (c.x + 10)] = 1;
+    }
+    int in = 0;
+    for (int y = -10; y < 190; ++y) {
+      for (int x = -10; x < 290; ++x) {
+        const bool inside = InFrontierRegion(grid, {x, y}, p);
+        ASSERT_EQ(inside, kept[std::size_t(y + 10) * 300 + (x + 10)] != 0)
+            << x << ", " << y << ", min " << min_cells;
+        in += inside;
+      }
+    }
+    EXPECT_GT(in, 100) << min_cells;
+  }
+}
+
 TEST(GridFrontiers, AnEmptyGridHasNoneAndBadParamsAreRejected) {
   EXPECT_TRUE(FindFrontierRegions(OccupancyGrid()).empty());
   GridFrontierParams p;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "slamkit/core/rng.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -325,6 +327,85 @@ TEST(GridPathsFrontier, PicksTheCheapestReachableCellAndHonoursSkip) {
   EXPECT_GE(second->cost_m, target->cost_m);
   EXPECT_FALSE(
       NearestReachableFrontier(costs, regions, [](const FrontierRegion&) { return true; }));
+}
+
+// A hall of 300 × 200 cells (several 64-cell tiles) with pillars and wall stubs at seeded
+// random places, and free rays out into the unknown beyond its east wall, as beams through a
+// window leave them.
+OccupancyGrid PillaredHall() {
+  OccupancyGrid grid = Room(300, 200);
+  Rng rng(7);
+  for (int k = 0; k < 60; ++k) {
+    const int x = static_cast<int>(rng.Uniform(5, 290)), y = static_cast<int>(rng.Uniform(5, 190));
+    const bool stub = k % 3 == 0;
+    Fill(grid, x, y, x + (stub ? 12 : 2), y + (stub ? 0 : 2), '#');
+  }
+  Fill(grid, 299, 60, 299, 62, '.');  // the window
+  for (int x = 300; x < 420; ++x) Fill(grid, x, 61 + (x - 300) / 6, x, 61 + (x - 300) / 6, '.');
+  return grid;
+}
+
+// The distance to the nearest occupied square within `reach` cells, by brute force.
+double ClearanceWithin(const OccupancyGrid& grid, const CellIndex& c, int reach) {
+  double best = kInf;
+  for (int y = c.y - reach; y <= c.y + reach; ++y) {
+    for (int x = c.x - reach; x <= c.x + reach; ++x) {
+      if (!(grid.Probability({x, y}) > 0.65)) continue;
+      const double ex = std::max(std::abs(x - c.x) - 0.5, 0.0);
+      const double ey = std::max(std::abs(y - c.y) - 0.5, 0.0);
+      best = std::min(best, kRes * std::hypot(ex, ey));
+    }
+  }
+  return best;
+}
+
+// The costs keep their tiles unprepared until the search reaches them: a search stopped early
+// prepares few, and every figure must still be the one a full search gives, on every tile.
+TEST(GridPathCosts, ASearchStoppedAtTheNearestGoalAgreesWithAFullOne) {
+  const OccupancyGrid grid = PillaredHall();
+  const GridPathParams params;
+  const double reach = params.robot_radius_m + params.clearance_m;
+  const Eigen::Vector2d start = Centre({40, 40});
+  const CellIndex goal_a{150, 120}, goal_b{260, 30};
+  const auto is_goal = [&](const CellIndex& c) { return c == goal_a || c == goal_b; };
+  const GridPathCosts full = GridPathCosts::From(grid, start, params);
+  const GridPathCosts early = GridPathCosts::UpToNearestGoal(grid, start, is_goal, params);
+  ASSERT_TRUE(full.Reachable(goal_a) && full.Reachable(goal_b));
+  ASSERT_TRUE(early.goal().has_value());
+  const double goal_cost = std::min(full.Cost(goal_a), full.Cost(goal_b));
+  EXPECT_EQ(early.Cost(*early.goal()), goal_cost);
+  EXPECT_FALSE(full.goal().has_value());
+  int settled = 0, beyond = 0, checked = 0;
+  for (int y = -1; y <= 200; ++y) {  // the window: the written cells and a ring of one
+    for (int x = -1; x <= 420; ++x) {
+      const CellIndex c{x, y};
+      ASSERT_EQ(early.IsFree(c), full.IsFree(c)) << x << ", " << y;
+      ASSERT_EQ(early.Clearance(c), full.Clearance(c)) << x << ", " << y;
+      const double exact = ClearanceWithin(grid, c, 10);
+      if (exact < reach - 1e-9) {
+        ASSERT_NEAR(full.Clearance(c), exact, 1e-9) << x << ", " << y;
+        ++checked;
+      }
+      if (full.Cost(c) <= goal_cost) {
+        ASSERT_EQ(early.Cost(c), full.Cost(c)) << x << ", " << y;
+        ++settled;
+      } else {
+        ASSERT_GE(early.Cost(c), full.Cost(c)) << x << ", " << y;
+        beyond += std::isfinite(full.Cost(c));
+      }
+    }
+  }
+  EXPECT_GT(settled, 5000);
+  EXPECT_GT(beyond, 5000);
+  EXPECT_GT(checked, 5000);
+  // The ray beyond the window is reachable only cell by cell: unknown on both sides.
+  EXPECT_TRUE(full.IsFree({350, 69}));
+  EXPECT_EQ(full.PathTo({150, 120}).back(), (CellIndex{150, 120}));
+  // No goal: the search runs to the end.
+  const GridPathCosts none =
+      GridPathCosts::UpToNearestGoal(grid, start, [](const CellIndex&) { return false; }, params);
+  EXPECT_FALSE(none.goal().has_value());
+  EXPECT_EQ(none.Cost({250, 180}), full.Cost({250, 180}));
 }
 
 TEST(GridPathCosts, InvalidParamsThrow) {

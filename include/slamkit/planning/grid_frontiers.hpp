@@ -27,6 +27,12 @@ struct GridFrontierParams {
 // between the two thresholds).
 bool IsFrontierCell(const OccupancyGrid& grid, const CellIndex& c, const GridFrontierParams& params);
 
+// Whether `c` is a frontier cell of a region FindFrontierRegions keeps (min_region_cells or more):
+// the region is grown from `c` only until it is large enough, so a search that meets frontier
+// cells one at a time need not list every frontier of the map first.
+bool InFrontierRegion(const OccupancyGrid& grid, const CellIndex& c,
+                      const GridFrontierParams& params = {});
+
 // One 8-connected group of frontier cells.
 struct FrontierRegion {
   std::vector<CellIndex> cells;  // in the order the search reached them

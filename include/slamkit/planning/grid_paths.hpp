@@ -1,7 +1,9 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -44,6 +46,12 @@ class GridPathCosts {
   // 0 < free <= occupied < 1.
   static GridPathCosts From(const OccupancyGrid& grid, const Eigen::Vector2d& start_m,
                             const GridPathParams& params = {});
+  // Dijkstra stopped once every cell as cheap as the cheapest cell with is_goal(cell) is
+  // settled: Cost is exact up to that cost and +inf or an upper bound above it. Without a
+  // reachable goal the search runs to the end, as From. goal() is the first goal settled.
+  static GridPathCosts UpToNearestGoal(const OccupancyGrid& grid, const Eigen::Vector2d& start_m,
+                                       const std::function<bool(const CellIndex&)>& is_goal,
+                                       const GridPathParams& params = {});
 
   bool Reachable(const CellIndex& c) const;
   double Cost(const CellIndex& c) const;  // metres with penalties, +inf when unreachable
@@ -56,29 +64,61 @@ class GridPathCosts {
   bool IsFree(const CellIndex& c) const;       // known and below free_probability
   bool Traversable(const CellIndex& c) const;  // free and not inflated
   CellIndex start() const { return start_; }
+  const std::optional<CellIndex>& goal() const { return goal_; }
+  // A clearance is a rounded product (resolution × a distance in cells): one that is exactly the
+  // radius (the middle of a gap 2 × radius + one cell wide) may come out this much below it,
+  // and must not block.
+  static constexpr double kClearanceSlack_m = 1e-9;
   double resolution() const { return resolution_m_; }
   const GridPathParams& params() const { return params_; }
 
  private:
-  GridPathCosts() = default;
+  // The window is stored in tiles prepared (free cells and clearance read from the grid) when
+  // the search first reaches them: a map's written window is mostly unknown (beams with no
+  // return write free cells tens of metres out), and the search only touches what is reachable.
+  static constexpr int kTileBits = 6;
+  static constexpr int kTileSize = 1 << kTileBits;
+  static constexpr int kTileCells = kTileSize * kTileSize;
+  struct Tile {
+    std::array<char, kTileCells> free;
+    std::array<double, kTileCells> clearance_m;
+    std::array<double, kTileCells> cost_m;
+    std::array<std::int8_t, kTileCells> parent;  // the step (index into the 8 neighbours)
+  };
+
+  GridPathCosts(const OccupancyGrid& grid, const Eigen::Vector2d& start_m,
+                const GridPathParams& params);
   bool Contains(const CellIndex& c) const {
     return c.x >= x0_ && c.y >= y0_ && c.x < x0_ + width_ && c.y < y0_ + height_;
   }
-  std::size_t Index(const CellIndex& c) const {
-    return static_cast<std::size_t>(c.y - y0_) * static_cast<std::size_t>(width_) +
-           static_cast<std::size_t>(c.x - x0_);
+  std::size_t TileIndex(const CellIndex& c) const {
+    return static_cast<std::size_t>((c.y - y0_) >> kTileBits) * static_cast<std::size_t>(tiles_x_) +
+           static_cast<std::size_t>((c.x - x0_) >> kTileBits);
   }
-  void ComputeClearance(const OccupancyGrid& grid);
-  void RunDijkstra();
+  static int InTile(const CellIndex& c, const CellIndex& origin) {
+    return ((c.y - origin.y) & (kTileSize - 1)) * kTileSize + ((c.x - origin.x) & (kTileSize - 1));
+  }
+  int InTile(const CellIndex& c) const { return InTile(c, {x0_, y0_}); }
+  const Tile* FindTile(const CellIndex& c) const;  // nullptr outside or not prepared yet
+  Tile& PreparedTile(const CellIndex& c);
+  void PrepareClearance(const CellIndex& tile_origin, Tile& tile) const;
+  bool ReadFree(const CellIndex& c) const;
+  bool ReadOccupied(const CellIndex& c) const;
+  bool OnObstacleBorder(const CellIndex& c) const;
+  double ReadClearance(const CellIndex& c) const;  // for a cell of a tile not prepared
+  void RunDijkstra(const std::function<bool(const CellIndex&)>& is_goal);
 
+  OccupancyGrid grid_;  // a copy sharing the tiles, read as the search reaches them
   GridPathParams params_;
   double resolution_m_ = 0.0;
   CellIndex start_;
+  std::optional<CellIndex> goal_;
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;  // the window
-  std::vector<char> free_;
-  std::vector<double> clearance_m_;
-  std::vector<double> cost_m_;
-  std::vector<std::int8_t> parent_;  // the step (index into the 8 neighbours) that reached a cell
+  int tiles_x_ = 0;
+  int reach_cells_ = 0;  // the disc's half-width in cells
+  struct DiscOffset { int dx, dy; double d_m; };
+  std::vector<DiscOffset> disc_;  // offsets within robot_radius_m + clearance_m, nearest first
+  std::vector<std::shared_ptr<Tile>> tiles_;
 };
 
 // The path's cells as waypoints in metres (their centres): the first and last, and a point where

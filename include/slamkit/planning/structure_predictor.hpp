@@ -65,7 +65,8 @@ std::optional<PredictedStructure> PredictStructure(const OccupancyGrid& map,
                                                    const Eigen::Vector2d& target_m,
                                                    const StructurePredictorParams& params = {});
 
-// Step 1 on a log: the nearest reachable frontier cell from `pose` (None: none).
+// Step 1 on a log: the nearest reachable frontier cell from `pose` (None: none), a cell of a
+// region FindFrontierRegions keeps; of cells at one cost, the first the search settles.
 std::optional<Eigen::Vector2d> ChoosePredictionTarget(const OccupancyGrid& map, const Pose2& pose,
                                                       const StructurePredictorParams& params);
 
