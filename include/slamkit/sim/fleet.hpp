@@ -59,6 +59,9 @@ void CopyTrueIds(const FleetRun& run, FleetLog& log);
 struct MessageParams {
   double loss_probability = 0.0;  // each sighting message (a vehicle's sightings at one time)
   int max_sightings = 0;          // per message, the nearest kept (a bandwidth cap; 0: none)
+  // Every message (controls and sightings) arrives at most this long after it was sent: the
+  // link's worst latency. A receiver then runs its filter this far behind (coop_run.hpp).
+  double delay_s = 0.0;
 };
 
 // Which events of `log` reach vehicle `receiver`: all its own, every other vehicle's controls

@@ -56,6 +56,9 @@ void AddFilterLines(CoopFilterParams& f, ParamTable& t) {
              "", "each sighting message is lost with this probability"),
       Integer("messages", "max_sightings", &f.messages.max_sightings, 0,
               "the nearest this many sightings per message (0: all)"),
+      Number("messages", "delay_s", &f.messages.delay_s, Bound::kNonNegative, "s",
+             "every message arrives at most this late; eo and eo-exact filters run this far "
+             "behind and move their own pose on by its controls"),
   };
   t.insert(t.end(), lines.begin(), lines.end());
 }

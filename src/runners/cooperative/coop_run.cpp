@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "coop_lag.hpp"
 #include "coop_scoring.hpp"
 #include "slamkit/eval/errors.hpp"
 
@@ -27,6 +28,8 @@ struct Estimator {
   std::vector<LandmarkId> landmark_truth;  // by landmark index: its creating sighting's truth
   std::vector<std::pair<int, LandmarkId>> assigned;  // (landmark, true id) of each used sighting
   std::vector<double> last_record_s;
+  int self = -1;      // the vehicle whose filter this is (-1: the central filter)
+  double lag_s = 0.0;  // how far behind real time it runs (delayed messages)
 };
 
 CooperativeMode FilterModeOf(CoopMode mode) {
@@ -58,15 +61,12 @@ Estimator MakeEstimator(const FleetLog& log, CoopMode mode, int self, const Coop
   e.time_s.assign(log.vehicles, t0);
   e.control.assign(log.vehicles, Control());
   e.last_record_s.assign(log.vehicles, -1e300);
+  e.self = self;
+  // Only filters that take other vehicles' messages wait for them; Mono and the central
+  // filter (the reference: every measurement once, as soon as it is made) do not.
+  const bool receives = mode == CoopMode::kExtended || mode == CoopMode::kExact;
+  e.lag_s = self >= 0 && receives ? p.messages.delay_s : 0.0;
   return e;
-}
-
-ControlCovariance NoiseFor(const CoopFilterParams& p, const Control& u, double dt_s) {
-  if (!p.control_noise_density) return UnicycleModel(p.motion).Noise(u, dt_s);
-  ControlCovariance Q = ControlCovariance::Zero(2, 2);
-  Q(0, 0) = p.control_noise_density->x() / dt_s;
-  Q(1, 1) = p.control_noise_density->y() / dt_s;
-  return Q;
 }
 
 // Moves vehicle v's block to time t with its latest control (none yet: it stands still).
@@ -74,7 +74,7 @@ void Advance(Estimator& e, int v, double t, const CoopFilterParams& p) {
   if (!e.filter->Tracks(v) || t <= e.time_s[v]) return;
   const double dt = t - e.time_s[v];
   if (e.control[v].size() > 0) {
-    const ControlCovariance Q = NoiseFor(p, e.control[v], dt);
+    const ControlCovariance Q = internal::ControlNoise(p, e.control[v], dt);
     e.filter->Predict(v, e.control[v], dt, &Q);
   }
   e.time_s[v] = t;
@@ -121,13 +121,17 @@ void Process(const FleetLog& log, const FleetTruth& truth, const std::vector<Lan
     if (ev.kind == FleetEvent::Kind::kControl) {
       const int v = ev.vehicle;
       Advance(e, v, ev.t_s, p);
-      if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s &&
-          Record(out->vehicles[v], ev.t_s, e.filter->PoseOf(v), e.filter->PoseCovarianceOf(v),
-                 truth.paths[v])) {
-        e.last_record_s[v] = ev.t_s;
-      }
       e.control[v] = Control(2);
       e.control[v] << ev.value.x(), ev.value.y();
+      if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s) {
+        internal::PoseNow now{ev.t_s, e.filter->PoseOf(v), e.filter->PoseCovarianceOf(v)};
+        if (v == e.self && e.lag_s > 0.0) {
+          now = internal::MoveOnByOwnControls(log, events, j + 1, v, now, e.control[v], e.lag_s, p);
+        }
+        if (Record(out->vehicles[v], now.t_s, now.pose, now.covariance, truth.paths[v])) {
+          e.last_record_s[v] = ev.t_s;
+        }
+      }
       ++j;
       continue;
     }
@@ -239,14 +243,29 @@ CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
   return out;
 }
 
-std::vector<double> ImprovementRatio(const CoopVehicleTrace& mono, const CoopVehicleTrace& other) {
+std::vector<double> ImprovementRatio(const std::vector<double>& mono_t_s,
+                                     const std::vector<double>& mono_norm,
+                                     const std::vector<double>& t_s,
+                                     const std::vector<double>& norm) {
   std::vector<double> ir;
-  const std::size_t n = std::min(mono.position_cov_norm.size(), other.position_cov_norm.size());
-  for (std::size_t k = 0; k < n; ++k) {
-    const double m = mono.position_cov_norm[k];
-    ir.push_back(m > 0.0 ? 100.0 * (m - other.position_cov_norm[k]) / m : 0.0);
+  std::size_t j = 0;  // Mono's latest record at or before t_s[k]
+  for (std::size_t k = 0; k < std::min(t_s.size(), norm.size()); ++k) {
+    while (j + 1 < mono_t_s.size() && mono_t_s[j + 1] <= t_s[k]) ++j;
+    if (mono_t_s.empty() || mono_t_s[j] > t_s[k] || j >= mono_norm.size()) continue;
+    const double m = mono_norm[j];
+    ir.push_back(m > 0.0 ? 100.0 * (m - norm[k]) / m : 0.0);
   }
   return ir;
+}
+
+std::vector<double> ImprovementRatio(const CoopVehicleTrace& mono, const CoopVehicleTrace& other) {
+  const auto times = [](const Trajectory& path) {
+    std::vector<double> t;
+    for (const StampedPose& p : path) t.push_back(p.t_s);
+    return t;
+  };
+  return ImprovementRatio(times(mono.estimate), mono.position_cov_norm, times(other.estimate),
+                          other.position_cov_norm);
 }
 
 }  // namespace slamkit

@@ -82,14 +82,12 @@ void AddImprovementRatios(CoopStudyResult* r) {
     if (m.mode == CoopMode::kMono || m.mode == CoopMode::kDeadReckoning) continue;
     for (std::size_t v = 0; v < m.vehicles.size(); ++v) {
       CoopVehicleSummary& s = m.vehicles[v];
-      const std::vector<double>& base = mono->vehicles[v].position_cov_norm;
-      const std::size_t n = std::min(base.size(), s.position_cov_norm.size());
+      const CoopVehicleSummary& base = mono->vehicles[v];
+      s.improvement_ratio_pct =
+          ImprovementRatio(base.t_s, base.position_cov_norm, s.t_s, s.position_cov_norm);
+      const std::size_t n = s.improvement_ratio_pct.size();
       double sum = 0.0;
-      for (std::size_t k = 0; k < n; ++k) {
-        const double ir = base[k] > 0.0 ? 100.0 * (base[k] - s.position_cov_norm[k]) / base[k] : 0.0;
-        s.improvement_ratio_pct.push_back(ir);
-        sum += ir;
-      }
+      for (double ir : s.improvement_ratio_pct) sum += ir;
       if (n == 0) continue;
       s.improvement_ratio_mean_pct = sum / double(n);
       s.improvement_ratio_final_pct = s.improvement_ratio_pct.back();

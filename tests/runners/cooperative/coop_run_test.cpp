@@ -115,6 +115,75 @@ TEST(CoopRun, EveryVehicleOfASynchronousFleetMakesExtendedObservations) {
   EXPECT_EQ(a + b, eo.counts.extended);
 }
 
+// With messages up to D late, a vehicle's estimate at real time T may use the others' messages
+// of times up to T − D only: cutting the other vessel's events after T* must leave every
+// estimate up to T* + D as it was, bit for bit. Without the lag the cut changes estimates
+// before T* + D (the test can tell). The lag costs accuracy: the covariance grows with D.
+TEST(CoopRun, DelayedMessagesAreUsedOnlyOnceTheyHaveArrived) {
+  CoopConfig c = ShortMarine(1);
+  const LandmarkWorld world = MakeWorld(c.scenario.world);
+  std::vector<Rng> noise = {Rng::ForStream(c.seed, 0), Rng::ForStream(c.seed, 1)};
+  const FleetRun run = SimulateFleet(c.scenario, world, noise);
+  constexpr double kCut_s = 300.0, kDelay_s = 20.0;
+  FleetLog cut = run.log;
+  std::erase_if(cut.events, [&](const FleetEvent& e) {
+    return e.vehicle == 1 && e.t_s > run.log.events.front().t_s + kCut_s;
+  });
+  const double cut_time = run.log.events.front().t_s + kCut_s;
+  const auto estimates_until = [](const CoopModeResult& r, double t) {
+    std::vector<Eigen::Vector3d> out;
+    for (const StampedPose& p : r.vehicles[0].estimate) {
+      if (p.t_s <= t) out.push_back(p.pose.vector());
+    }
+    return out;
+  };
+  for (const CoopMode mode : {CoopMode::kExact, CoopMode::kExtended}) {
+    for (const double delay : {0.0, kDelay_s}) {
+      c.filter.messages.delay_s = delay;
+      const CoopModeResult whole =
+          RunCoopMode(run.log, run.truth, run.landmark_ids, mode, c.filter, c.seed);
+      const CoopModeResult part =
+          RunCoopMode(cut, run.truth, run.landmark_ids, mode, c.filter, c.seed);
+      const auto a = estimates_until(whole, cut_time + kDelay_s);
+      const auto b = estimates_until(part, cut_time + kDelay_s);
+      ASSERT_EQ(a.size(), b.size());
+      ASSERT_GT(a.size(), 250u);
+      if (delay > 0.0) {
+        EXPECT_EQ(a, b) << CoopModeName(mode);
+        EXPECT_NEAR(whole.vehicles[0].estimate.front().t_s, run.log.events.front().t_s + delay,
+                    1.5);
+      } else {
+        EXPECT_NE(a, b) << CoopModeName(mode);
+      }
+    }
+  }
+  // The exact mode's mean covariance norm grows with the lag, and its estimates are still
+  // consistent with their covariance (the pose moved on by the controls carries their noise).
+  double previous = 0.0;
+  for (const double delay : {0.0, 10.0, 40.0}) {
+    c.filter.messages.delay_s = delay;
+    const CoopModeResult r =
+        RunCoopMode(run.log, run.truth, run.landmark_ids, CoopMode::kExact, c.filter, c.seed);
+    double norm = 0.0;
+    for (double n : r.vehicles[0].position_cov_norm) norm += n;
+    norm /= static_cast<double>(r.vehicles[0].position_cov_norm.size());
+    EXPECT_GT(norm, previous) << delay;
+    EXPECT_LT(r.vehicles[0].mean_nees, 9.0) << delay;
+    previous = norm;
+  }
+}
+
+// A filter behind real time records later times than Mono: IR pairs each record with Mono's at
+// the same time or the latest before it, and leaves out records before Mono's first.
+TEST(CoopRun, ImprovementRatioPairsRecordsByTime) {
+  const std::vector<double> mono_t = {10, 11, 12, 13}, mono_norm = {1, 2, 4, 8};
+  const std::vector<double> ir = ImprovementRatio(mono_t, mono_norm, {9, 12, 13, 14.5}, {1, 2, 6, 2});
+  ASSERT_EQ(ir.size(), 3u);
+  EXPECT_DOUBLE_EQ(ir[0], 50.0);   // 12 against 12
+  EXPECT_DOUBLE_EQ(ir[1], 25.0);   // 13 against 13
+  EXPECT_DOUBLE_EQ(ir[2], 75.0);   // 14.5 against 13, the latest before
+}
+
 class CoopConfigFile : public testing::TempDirTest {};
 
 TEST_F(CoopConfigFile, MistakesNameTheFileTheLineAndTheKey) {

@@ -91,8 +91,14 @@ CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
                            const std::vector<LandmarkId>& true_ids, CoopMode mode,
                            const CoopFilterParams& params, std::uint64_t message_seed);
 
-// SPEC S3's improvement ratio over time, (‖C‖_mono − ‖C‖) / ‖C‖_mono in %, of one vehicle's two
-// records (the same times: both come from one log), and its mean.
+// SPEC S3's improvement ratio over time, (‖C‖_mono − ‖C‖) / ‖C‖_mono in %, at each of the
+// other record's times t against Mono's record at t or the latest before it (a filter that runs
+// behind real time for delayed messages records later times than Mono); records before Mono's
+// first are left out.
+std::vector<double> ImprovementRatio(const std::vector<double>& mono_t_s,
+                                     const std::vector<double>& mono_norm,
+                                     const std::vector<double>& t_s,
+                                     const std::vector<double>& norm);
 std::vector<double> ImprovementRatio(const CoopVehicleTrace& mono, const CoopVehicleTrace& other);
 
 }  // namespace slamkit
