@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "../common/ordered_batches.hpp"
 #include "slamkit/io/error.hpp"
 
 namespace slamkit {
@@ -95,28 +96,49 @@ void AddImprovementRatios(CoopStudyResult* r) {
   }
 }
 
-// The runs: `run(r)` gives run r's fleet, every mode runs on it.
+struct Fleet {
+  FleetLog log;
+  FleetTruth truth;
+  std::vector<LandmarkId> ids;
+};
+
+
+// Every mode on run r's fleet.
+struct RunOutputs {
+  std::vector<CoopModeResult> modes;
+  LandmarkWorld world;
+};
+
+// The runs, in parallel batches (`fleet_of(r)` gives run r's fleet; every mode runs on it),
+// summed in run order: the same figures for any thread count.
 template <typename RunFleet>
 CoopStudyResult Study(int runs, int vehicles, const std::vector<CoopMode>& modes,
                       const CoopFilterParams& params, std::uint64_t seed, RunFleet fleet_of,
-                      const CoopProgress& progress) {
+                      const CoopProgress& progress, int threads) {
   const auto start = std::chrono::steady_clock::now();
   CoopStudyResult result;
   result.runs = runs;
   std::vector<std::vector<VehicleSums>> sums(modes.size(), std::vector<VehicleSums>(vehicles));
   std::vector<double> update_s(modes.size(), 0.0);
   result.modes.resize(modes.size());
-  for (int r = 0; r < runs; ++r) {
-    const auto [log, truth, ids] = fleet_of(r);
-    if (r == 0) result.landmarks = truth.world;
-    for (std::size_t m = 0; m < modes.size(); ++m) {
-      CoopModeResult one = RunCoopMode(log, truth, ids, modes[m], params, seed + r);
-      for (int v = 0; v < vehicles; ++v) Accumulate(one.vehicles[v], &sums[m][v]);
-      update_s[m] += one.update_time_mean_s;
-      if (r == 0) result.modes[m].first_run = std::move(one);
+  const auto run_one = [&](int r) {
+    const Fleet fleet = fleet_of(r);
+    RunOutputs out;
+    out.world = fleet.truth.world;
+    for (const CoopMode mode : modes) {
+      out.modes.push_back(RunCoopMode(fleet.log, fleet.truth, fleet.ids, mode, params, seed + r));
     }
-    if (progress) progress(r + 1, runs);
-  }
+    return out;
+  };
+  const auto take = [&](int r, RunOutputs&& out) {
+    if (r == 0) result.landmarks = std::move(out.world);
+    for (std::size_t m = 0; m < modes.size(); ++m) {
+      for (int v = 0; v < vehicles; ++v) Accumulate(out.modes[m].vehicles[v], &sums[m][v]);
+      update_s[m] += out.modes[m].update_time_mean_s;
+      if (r == 0) result.modes[m].first_run = std::move(out.modes[m]);
+    }
+  };
+  RunInOrderedBatches<RunOutputs>({runs, 16, threads, progress}, run_one, take);
   for (std::size_t m = 0; m < modes.size(); ++m) {
     CoopModeSummary& s = result.modes[m];
     s.mode = modes[m];
@@ -133,16 +155,10 @@ CoopStudyResult Study(int runs, int vehicles, const std::vector<CoopMode>& modes
   return result;
 }
 
-struct Fleet {
-  FleetLog log;
-  FleetTruth truth;
-  std::vector<LandmarkId> ids;
-};
-
 }  // namespace
 
 CoopStudyResult RunCoopStudy(const CoopConfig& config, const std::vector<CoopMode>& modes,
-                             const CoopProgress& progress) {
+                             const CoopProgress& progress, int threads) {
   const int vehicles = static_cast<int>(config.scenario.vehicles.size());
   if (vehicles == 0) throw InputError("coop: the config has no vehicles to simulate");
   const LandmarkWorld world = MakeWorld(config.scenario.world);
@@ -154,14 +170,15 @@ CoopStudyResult RunCoopStudy(const CoopConfig& config, const std::vector<CoopMod
     FleetRun run = SimulateFleet(config.scenario, world, noise);
     return Fleet{std::move(run.log), std::move(run.truth), std::move(run.landmark_ids)};
   };
-  return Study(config.runs, vehicles, modes, config.filter, config.seed, fleet_of, progress);
+  return Study(config.runs, vehicles, modes, config.filter, config.seed, fleet_of, progress,
+               threads);
 }
 
 CoopStudyResult RunCoopLog(const FleetLog& log, const FleetTruth& truth,
                            const std::vector<LandmarkId>& true_ids, const CoopFilterParams& params,
                            const std::vector<CoopMode>& modes, std::uint64_t seed) {
   const auto fleet_of = [&](int) { return Fleet{log, truth, true_ids}; };
-  return Study(1, log.vehicles, modes, params, seed, fleet_of, {});
+  return Study(1, log.vehicles, modes, params, seed, fleet_of, {}, 1);
 }
 
 }  // namespace slamkit

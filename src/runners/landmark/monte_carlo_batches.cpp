@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
-#include "slamkit/core/cpu.hpp"
+#include "../common/ordered_batches.hpp"
 #include "slamkit/io/error.hpp"
 
 namespace slamkit::internal {
@@ -165,29 +161,11 @@ MonteCarloResult RunInBatches(LandmarkWorld world, const MonteCarloParams& param
   mc.run_count = params.runs;
   if (params.keep_summaries) mc.summaries.reserve(static_cast<std::size_t>(params.runs));
   if (params.keep_runs) mc.runs.reserve(static_cast<std::size_t>(params.runs));
-  const int threads = params.threads > 0 ? params.threads : UsableCpuCount();
   Aggregator aggregate(mc, params.runs);
-  std::mutex progress_mutex;
-  int finished = 0;
-  tbb::task_arena arena(std::max(threads, 1));
-  // Runs in batches: a batch runs in parallel, then its runs are aggregated (and handed to
-  // on_run) in index order and dropped, so memory holds one batch, not every run.
-  std::vector<RunResult> batch;
-  for (int first = 0; first < params.runs; first += params.batch_runs) {
-    const int last = std::min(params.runs, first + params.batch_runs);
-    batch.assign(static_cast<std::size_t>(last - first), RunResult{});
-    arena.execute([&] {
-      tbb::parallel_for(first, last, [&](int k) {
-        batch[static_cast<std::size_t>(k - first)] = run_one(k);
-        const std::lock_guard lock(progress_mutex);
-        ++finished;
-        if (params.progress) params.progress(finished, params.runs);
-      });
-    });
-    for (int k = first; k < last; ++k) {
-      TakeRun(k, std::move(batch[static_cast<std::size_t>(k - first)]), params, aggregate, mc);
-    }
-  }
+  const OrderedBatchParams batches{params.runs, params.batch_runs, params.threads, params.progress};
+  RunInOrderedBatches<RunResult>(batches, run_one, [&](int k, RunResult&& r) {
+    TakeRun(k, std::move(r), params, aggregate, mc);
+  });
   if (params.keep_runs) mc.first_run = mc.runs.front();
   aggregate.Finish();
   return mc;

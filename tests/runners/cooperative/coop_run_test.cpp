@@ -56,6 +56,28 @@ TEST(CoopStudy, ExactModeIsTheCentralFilterAndSharingBeatsMono) {
   EXPECT_GT(exact.counts.vehicle_updates, 0);
 }
 
+// The runs go in parallel batches and are summed in run order: one thread and two give the same
+// figures, to the bit.
+TEST(CoopStudy, FiguresDoNotDependOnTheThreadCount) {
+  CoopConfig c = ShortMarine(5);
+  c.filter.messages.loss_probability = 0.3;  // message draws per run, too
+  const std::vector<CoopMode> modes = {CoopMode::kMono, CoopMode::kExtended, CoopMode::kExact};
+  const CoopStudyResult one = RunCoopStudy(c, modes, {}, 1);
+  const CoopStudyResult two = RunCoopStudy(c, modes, {}, 2);
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    for (std::size_t v = 0; v < 2; ++v) {
+      const CoopVehicleSummary& a = one.modes[m].vehicles[v];
+      const CoopVehicleSummary& b = two.modes[m].vehicles[v];
+      EXPECT_EQ(a.position_rmse_m, b.position_rmse_m);
+      EXPECT_EQ(a.anees, b.anees);
+      EXPECT_EQ(a.position_cov_norm, b.position_cov_norm);
+      EXPECT_EQ(a.improvement_ratio_pct, b.improvement_ratio_pct);
+    }
+    EXPECT_EQ(one.modes[m].first_run.vehicles[0].estimate.size(),
+              two.modes[m].first_run.vehicles[0].estimate.size());
+  }
+}
+
 TEST(CoopStudy, LostMessagesLeaveTheExactFilterBetweenMonoAndCentral) {
   CoopConfig c = ShortMarine(1);
   c.filter.messages.loss_probability = 0.5;

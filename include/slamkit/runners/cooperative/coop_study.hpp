@@ -50,10 +50,11 @@ struct CoopStudyResult {
 using CoopProgress = std::function<void(int done, int total)>;
 
 // Every mode on the same `runs` simulated fleets of `config` (run r draws vehicle v's noise
-// from Rng::ForStream(config.seed, r · vehicles + v), its messages' loss from seed + r).
-// Throws InputError for a config without vehicles.
+// from Rng::ForStream(config.seed, r · vehicles + v), its messages' loss from seed + r), run in
+// parallel on `threads` threads (0: all the CPUs this process may use) with the same figures for
+// any thread count. Throws InputError for a config without vehicles.
 CoopStudyResult RunCoopStudy(const CoopConfig& config, const std::vector<CoopMode>& modes,
-                             const CoopProgress& progress = {});
+                             const CoopProgress& progress = {}, int threads = 0);
 
 // Every mode once on a recorded fleet (a data set); `true_ids` as RunCoopMode's.
 CoopStudyResult RunCoopLog(const FleetLog& log, const FleetTruth& truth,
