@@ -219,7 +219,12 @@ StructurePredictor MakeStructurePredictor(const StructurePredictorParams& params
                          : ChoosePredictionTarget(request.map, request.pose, params);
     if (!target) return std::nullopt;
     std::optional<PredictedStructure> result = PredictStructure(request.map, *target, params);
-    if (result) result->hypothesis.t_s = request.t_s;
+    if (!result) {  // keep where it looked
+      result.emplace();
+      result->hypothesis.target_m = *target;
+      result->structure_found = false;
+    }
+    result->hypothesis.t_s = request.t_s;
     return result;
   };
 }

@@ -303,6 +303,15 @@ TEST(StructurePredictor, MadePredictorUsesTheRequestsTargetOrTheNearestFrontier)
   ASSERT_TRUE(chosen.has_value());
   EXPECT_EQ(chosen->hypothesis.target_m, *f);
   EXPECT_TRUE(chosen->accepted);
+  // A target with no corner near it: no structure, and the result says where it looked.
+  request.target_m = Eigen::Vector2d(60.0, 60.0);
+  const std::optional<PredictedStructure> bare = predict(request);
+  ASSERT_TRUE(bare.has_value());
+  EXPECT_FALSE(bare->structure_found);
+  EXPECT_FALSE(bare->accepted);
+  EXPECT_EQ(bare->hypothesis.target_m, Eigen::Vector2d(60.0, 60.0));
+  EXPECT_TRUE(chosen->structure_found);
+  request.target_m.reset();
   // A map without frontiers: nothing to predict.
   OccupancyGrid closed = MakeGrid();
   DrawRoom(closed, {1.05, 1.05}, 0.0, 6.0, 4.0);

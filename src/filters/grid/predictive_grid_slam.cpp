@@ -102,8 +102,9 @@ void PredictiveGridSlam::TakeFinished(bool wait) {
   std::optional<PredictedStructure> result = in_flight_.get();
   HypothesisRecord& record = records_[in_flight_record_];
   record.install_scan = scans_;
-  if (!result) {
+  if (!result || !result->structure_found) {
     record.fate = HypothesisFate::kNoStructure;
+    if (result) record.hypothesis.target_m = result->hypothesis.target_m;
   } else {
     const double t_s = record.hypothesis.t_s;  // the request's, whatever the predictor says
     record.hypothesis = std::move(result->hypothesis);

@@ -92,9 +92,15 @@ TEST(PredictiveGridSlam, WithoutPredictionsIsTheGridFilterBitForBit) {
   params.request_every_updates = 2;
   params.deterministic_delay_scans = 3;
   PredictiveGridSlam predictive(SmallFilter(), params,
-                                [&calls](const StructurePredictionRequest&) {
-                                  ++calls;
-                                  return std::optional<PredictedStructure>();
+                                [&calls](const StructurePredictionRequest& request) {
+                                  // Every other one found no structure at a target it names.
+                                  std::optional<PredictedStructure> none;
+                                  if (++calls % 2 == 0) {
+                                    none.emplace();
+                                    none->structure_found = false;
+                                    none->hypothesis.target_m = {request.id, 1.0};
+                                  }
+                                  return none;
                                 });
   for (const LaserScan& scan : scans) {
     plain.ProcessScan(scan);
@@ -109,6 +115,9 @@ TEST(PredictiveGridSlam, WithoutPredictionsIsTheGridFilterBitForBit) {
   const int last_scan = static_cast<int>(scans.size());
   for (const HypothesisRecord& r : predictive.records()) {
     EXPECT_EQ(r.fate, HypothesisFate::kNoStructure);
+    if (r.hypothesis.id % 2 == 1) {
+      EXPECT_EQ(r.hypothesis.target_m.x(), r.hypothesis.id);
+    }
     // The deterministic schedule: 3 scans after the request, or at the Flush after the last scan.
     EXPECT_EQ(r.install_scan, std::min(r.request_scan + 3, last_scan)) << r.request_scan;
   }

@@ -30,6 +30,9 @@ struct StructurePredictionRequest {
 struct PredictedStructure {
   GridHypothesis hypothesis;
   bool accepted = false;
+  // False when the target had no structure to align (no corner near it): only
+  // hypothesis.target_m is then meaningful, so that the record says where the predictor looked.
+  bool structure_found = true;
 };
 using StructurePredictor =
     std::function<std::optional<PredictedStructure>(const StructurePredictionRequest&)>;
