@@ -13,6 +13,7 @@ find_package(TBB REQUIRED)
 find_package(Boost 1.74 REQUIRED)  # header-only parts: Boost.Math
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
+find_package(Ceres REQUIRED)  # optim: sparse non-linear least squares (libceres-dev)
 
 if(SLAMKIT_BUILD_REPORT)
   # MathGL, for the report module only (cmake/FindSlamkitMathGL.cmake): slamkit::mathgl.

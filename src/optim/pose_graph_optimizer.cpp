@@ -1,0 +1,99 @@
+// SE(2) pose-graph optimisation on Ceres.
+#include "slamkit/optim/pose_graph_optimizer.hpp"
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+#include <ceres/problem.h>
+#include <ceres/solver.h>
+
+#include "pose_graph_index.hpp"
+#include "slamkit/optim/pose_graph_factors.hpp"
+
+namespace slamkit {
+namespace {
+
+template <class Factor>
+double Objective(const PoseGraph& graph, const std::vector<Pose2>& poses) {
+  if (poses.size() != graph.vertices.size()) {
+    throw std::invalid_argument("pose graph: one pose per vertex is needed");
+  }
+  const internal::VertexIndex index(graph);
+  double sum = 0.0;
+  for (const PoseGraphEdge& e : graph.edges) {
+    const Eigen::Vector3d xi = poses[index(e.from)].vector(), xj = poses[index(e.to)].vector();
+    const double* parameters[] = {xi.data(), xj.data()};
+    Eigen::Vector3d r;
+    Factor(e).Evaluate(parameters, r.data(), nullptr);
+    sum += r.squaredNorm();
+  }
+  return sum;
+}
+
+ceres::CostFunction* MakeFactor(const PoseGraphEdge& e, PoseGraphObjective objective) {
+  if (objective == PoseGraphObjective::kSeSync) return new RelativePoseSeSyncFactor(e);
+  return new RelativePoseChi2Factor(e);
+}
+
+ceres::Solver::Options SolverOptions(const PoseGraphOptimizerParams& p) {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = p.max_iterations;
+  options.function_tolerance = p.function_tolerance;
+  options.gradient_tolerance = p.gradient_tolerance;
+  options.parameter_tolerance = p.parameter_tolerance;
+  options.num_threads = std::max(1, p.threads);
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+}  // namespace
+
+std::vector<Pose2> InitialPoses(const PoseGraph& graph) {
+  std::vector<Pose2> poses;
+  poses.reserve(graph.vertices.size());
+  for (const PoseGraphVertex& v : graph.vertices) poses.push_back(v.pose);
+  return poses;
+}
+
+double Chi2(const PoseGraph& graph, const std::vector<Pose2>& poses) {
+  return Objective<RelativePoseChi2Factor>(graph, poses);
+}
+
+double SeSyncObjective(const PoseGraph& graph, const std::vector<Pose2>& poses) {
+  return Objective<RelativePoseSeSyncFactor>(graph, poses);
+}
+
+PoseGraphSolution OptimizePoseGraph(const PoseGraph& graph, const std::vector<Pose2>& initial,
+                                    const PoseGraphOptimizerParams& params) {
+  const auto start = std::chrono::steady_clock::now();
+  PoseGraphSolution solution;
+  solution.initial_chi2 = Chi2(graph, initial);
+  solution.initial_sesync_objective = SeSyncObjective(graph, initial);
+  const internal::VertexIndex index(graph);
+  std::vector<Eigen::Vector3d> x;
+  x.reserve(initial.size());
+  for (const Pose2& p : initial) x.push_back(p.vector());
+  ceres::Problem problem;
+  for (const PoseGraphEdge& e : graph.edges) {
+    problem.AddResidualBlock(MakeFactor(e, params.objective), nullptr, x[index(e.from)].data(),
+                             x[index(e.to)].data());
+  }
+  if (!x.empty() && problem.HasParameterBlock(x.front().data())) {
+    problem.SetParameterBlockConstant(x.front().data());
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(SolverOptions(params), &problem, &summary);
+  for (const Eigen::Vector3d& v : x) solution.poses.emplace_back(v);
+  solution.chi2 = Chi2(graph, solution.poses);
+  solution.sesync_objective = SeSyncObjective(graph, solution.poses);
+  solution.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  solution.converged = summary.termination_type == ceres::CONVERGENCE;
+  solution.termination = summary.message;
+  solution.time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return solution;
+}
+
+}  // namespace slamkit
