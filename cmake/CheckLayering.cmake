@@ -30,11 +30,12 @@ set(allowed_filters_fastslam top association particles ekf)
 set(allowed_filters_grid top particles)
 set(allowed_filters_features top association ekf selection ekf_slam)
 set(allowed_filters_cooperative top association ekf selection ekf_slam)
-set(families_runners common landmark grid features cooperative)
+set(families_runners common landmark grid features cooperative graph)
 set(allowed_runners_landmark common)
 set(allowed_runners_grid common)
 set(allowed_runners_features common)
 set(allowed_runners_cooperative common landmark)
+set(allowed_runners_graph common)
 # Public headers of these modules must not expose these libraries (metrics take plain data).
 set(forbidden_public_eval "nlohmann/" "yaml-cpp/")
 

@@ -2,7 +2,7 @@
 # Runs a libFuzzer campaign on one reader's harness (fuzz/), or on each in turn with `all`.
 # Usage: scripts/fuzz.sh READER|all SECONDS   (READER: carmen, carmen_gz, relations, isam,
 #        landmark_csv, scenario, floor_plan, waypoints, occupancy_image, trajectory,
-#        suite_manifest, mrclam)
+#        suite_manifest, mrclam, pose_graph)
 # Needs the sanitizer build (scripts/setup.sh asan), which holds the harnesses. Starts from the
 # seeds in fuzz/corpus/READER, copied into build/asan/corpus-work/READER, which the fuzzer grows
 # (the repository's seeds stay as they are; the working corpus is kept between runs so that
@@ -15,7 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 readers=(carmen carmen_gz relations isam landmark_csv scenario floor_plan waypoints
-         occupancy_image trajectory suite_manifest mrclam)
+         occupancy_image trajectory suite_manifest mrclam pose_graph)
 usage() { echo "usage: scripts/fuzz.sh READER|all SECONDS (READER: ${readers[*]})" >&2; exit 2; }
 [ $# -eq 2 ] || usage
 [[ $2 =~ ^[1-9][0-9]*$ ]] || usage

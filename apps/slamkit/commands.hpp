@@ -18,5 +18,6 @@ void RegisterFeatures(CLI::App& app, int& exit_code);
 void RegisterStudy(CLI::App& app, int& exit_code);
 void RegisterCoop(CLI::App& app, int& exit_code);
 void RegisterMapDiff(CLI::App& app, int& exit_code);
+void RegisterPoseGraph(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -47,6 +47,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterStudy(app, exit_code);
   slamkit::app::RegisterCoop(app, exit_code);
   slamkit::app::RegisterMapDiff(app, exit_code);
+  slamkit::app::RegisterPoseGraph(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
