@@ -21,6 +21,7 @@ struct PoseGraphOptions {
   std::string out;
   std::string objective = "chi2";
   std::string start = "both";
+  std::string loss = "none";
   bool no_figures = false;
   PoseGraphOptimizerParams params;
 };
@@ -34,6 +35,10 @@ Trajectory TrajectoryOf(const PoseGraph& graph, const std::vector<Pose2>& poses)
 int RunPoseGraphCommand(PoseGraphOptions o) {
   o.params.objective =
       o.objective == "sesync" ? PoseGraphObjective::kSeSync : PoseGraphObjective::kChi2;
+  for (const RobustLossKind kind : {RobustLossKind::kHuber, RobustLossKind::kCauchy,
+                                    RobustLossKind::kDcs}) {
+    if (o.loss == RobustLossName(kind)) o.params.loop_closure_loss.kind = kind;
+  }
   std::vector<PoseGraphStart> starts;
   if (o.start != "chordal") starts.push_back(PoseGraphStart::kFile);
   if (o.start != "file") starts.push_back(PoseGraphStart::kChordal);
@@ -103,6 +108,15 @@ void RegisterPoseGraph(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-iterations", o->params.max_iterations, "Levenberg-Marquardt iterations")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
+  cmd->add_option("--loss", o->loss,
+                  "the loss of loop closures (edges between vertices not consecutive in the "
+                  "file): none, huber, cauchy or dcs (dynamic covariance scaling)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"none", "huber", "cauchy", "dcs"}));
+  cmd->add_option("--loss-scale", o->params.loop_closure_loss.scale,
+                  "huber and cauchy: the residual's knee; dcs: Phi, in units of chi2")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-9, 1e9));
   cmd->add_option("--threads", o->params.threads, "Ceres threads")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));

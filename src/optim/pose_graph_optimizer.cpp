@@ -2,6 +2,7 @@
 #include "slamkit/optim/pose_graph_optimizer.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 
@@ -77,8 +78,10 @@ PoseGraphSolution OptimizePoseGraph(const PoseGraph& graph, const std::vector<Po
   for (const Pose2& p : initial) x.push_back(p.vector());
   ceres::Problem problem;
   for (const PoseGraphEdge& e : graph.edges) {
-    problem.AddResidualBlock(MakeFactor(e, params.objective), nullptr, x[index(e.from)].data(),
-                             x[index(e.to)].data());
+    const int i = index(e.from), j = index(e.to);
+    ceres::LossFunction* loss =
+        std::abs(i - j) == 1 ? nullptr : MakeRobustLoss(params.loop_closure_loss).release();
+    problem.AddResidualBlock(MakeFactor(e, params.objective), loss, x[i].data(), x[j].data());
   }
   if (!x.empty() && problem.HasParameterBlock(x.front().data())) {
     problem.SetParameterBlockConstant(x.front().data());

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "slamkit/core/pose_graph.hpp"
+#include "slamkit/optim/robust_loss.hpp"
 
 namespace slamkit {
 
@@ -22,6 +23,9 @@ struct PoseGraphOptimizerParams {
   double gradient_tolerance = 1e-12;
   double parameter_tolerance = 1e-12;
   int threads = 1;
+  // The loss of loop closures: edges whose vertices are not consecutive in the graph's vertex
+  // order (consecutive ones are odometry and keep the plain squared loss).
+  RobustLossParams loop_closure_loss;
 };
 
 struct PoseGraphSolution {

@@ -51,7 +51,9 @@ nlohmann::json PoseGraphRunJson(const PoseGraph& graph, const PoseGraphRun& run,
                  {"function_tolerance", params.function_tolerance},
                  {"gradient_tolerance", params.gradient_tolerance},
                  {"parameter_tolerance", params.parameter_tolerance},
-                 {"threads", params.threads}};
+                 {"threads", params.threads},
+                 {"loop_closure_loss", RobustLossName(params.loop_closure_loss.kind)},
+                 {"loop_closure_loss_scale", params.loop_closure_loss.scale}};
   for (const PoseGraphStartResult& r : run.starts) {
     const PoseGraphSolution& s = r.solution;
     j["starts"][std::string(PoseGraphStartName(r.start))] = {
