@@ -5,7 +5,10 @@
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
+#include <ceres/covariance.h>
 #include <ceres/problem.h>
 #include <ceres/solver.h>
 
@@ -49,6 +52,30 @@ ceres::Solver::Options SolverOptions(const PoseGraphOptimizerParams& p) {
   return options;
 }
 
+// The problem over `x` (set to `initial`): one factor per edge, closures with the robust loss,
+// the first vertex constant (the gauge).
+void BuildProblem(const PoseGraph& graph, const std::vector<Pose2>& initial,
+                  const PoseGraphOptimizerParams& params, std::vector<Eigen::Vector3d>* x,
+                  ceres::Problem* problem) {
+  if (initial.size() != graph.vertices.size()) {
+    throw std::invalid_argument("pose graph: one pose per vertex is needed");
+  }
+  const internal::VertexIndex index(graph);
+  x->clear();
+  x->reserve(initial.size());
+  for (const Pose2& p : initial) x->push_back(p.vector());
+  for (const PoseGraphEdge& e : graph.edges) {
+    const int i = index(e.from), j = index(e.to);
+    ceres::LossFunction* loss =
+        std::abs(i - j) == 1 ? nullptr : MakeRobustLoss(params.loop_closure_loss).release();
+    problem->AddResidualBlock(MakeFactor(e, params.objective), loss, (*x)[i].data(),
+                              (*x)[j].data());
+  }
+  if (!x->empty() && problem->HasParameterBlock(x->front().data())) {
+    problem->SetParameterBlockConstant(x->front().data());
+  }
+}
+
 }  // namespace
 
 std::vector<Pose2> InitialPoses(const PoseGraph& graph) {
@@ -72,20 +99,9 @@ PoseGraphSolution OptimizePoseGraph(const PoseGraph& graph, const std::vector<Po
   PoseGraphSolution solution;
   solution.initial_chi2 = Chi2(graph, initial);
   solution.initial_sesync_objective = SeSyncObjective(graph, initial);
-  const internal::VertexIndex index(graph);
   std::vector<Eigen::Vector3d> x;
-  x.reserve(initial.size());
-  for (const Pose2& p : initial) x.push_back(p.vector());
   ceres::Problem problem;
-  for (const PoseGraphEdge& e : graph.edges) {
-    const int i = index(e.from), j = index(e.to);
-    ceres::LossFunction* loss =
-        std::abs(i - j) == 1 ? nullptr : MakeRobustLoss(params.loop_closure_loss).release();
-    problem.AddResidualBlock(MakeFactor(e, params.objective), loss, x[i].data(), x[j].data());
-  }
-  if (!x.empty() && problem.HasParameterBlock(x.front().data())) {
-    problem.SetParameterBlockConstant(x.front().data());
-  }
+  BuildProblem(graph, initial, params, &x, &problem);
   ceres::Solver::Summary summary;
   ceres::Solve(SolverOptions(params), &problem, &summary);
   for (const Eigen::Vector3d& v : x) solution.poses.emplace_back(v);
@@ -97,6 +113,38 @@ PoseGraphSolution OptimizePoseGraph(const PoseGraph& graph, const std::vector<Po
   solution.time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return solution;
+}
+
+std::vector<Eigen::Matrix3d> MarginalCovariances(const PoseGraph& graph,
+                                                 const std::vector<Pose2>& poses,
+                                                 const std::vector<int>& vertex_ids,
+                                                 const PoseGraphOptimizerParams& params) {
+  std::vector<Eigen::Vector3d> x;
+  ceres::Problem problem;
+  BuildProblem(graph, poses, params, &x, &problem);
+  const internal::VertexIndex index(graph);
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (const int id : vertex_ids) {
+    const double* block = x[index(id)].data();
+    if (index(id) == 0) continue;
+    if (!problem.HasParameterBlock(block)) {
+      throw std::invalid_argument("pose graph: no edge reaches vertex " + std::to_string(id));
+    }
+    blocks.emplace_back(block, block);
+  }
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  ceres::Covariance covariance(options);
+  if (!blocks.empty() && !covariance.Compute(blocks, &problem)) {
+    throw std::invalid_argument("pose graph: the information is singular at these poses");
+  }
+  std::vector<Eigen::Matrix3d> out;
+  for (const int id : vertex_ids) {
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C = Eigen::Matrix3d::Zero();
+    if (index(id) != 0) covariance.GetCovarianceBlock(x[index(id)].data(), x[index(id)].data(), C.data());
+    out.emplace_back(C);
+  }
+  return out;
 }
 
 }  // namespace slamkit

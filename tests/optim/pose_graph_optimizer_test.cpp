@@ -91,6 +91,31 @@ TEST(PoseGraphOptimizer, ANoiseFreeGraphIsRecoveredFromChordalAndPerturbedStarts
   }
 }
 
+// A chain x0 (fixed) → x1 → x2: x1's covariance is the first edge's Ω⁻¹ carried into the world
+// frame by R_0 and R_01 (e = R_01ᵀ (R_0ᵀ (t_1 − t_0) − t_01) ...), and x2's is larger.
+TEST(PoseGraphOptimizer, MarginalCovariancesOfAChain) {
+  PoseGraph g;
+  g.vertices = {{0, Pose2(1.0, 2.0, 0.4)}, {1, Pose2()}, {2, Pose2()}};
+  Eigen::Matrix3d info;
+  info << 40, 5, 2, 5, 20, 1, 2, 1, 80;
+  g.edges = {{0, 1, Pose2(1.0, 0.2, 0.3), info}, {1, 2, Pose2(0.5, -0.1, -0.2), info}};
+  std::vector<Pose2> poses = {g.vertices[0].pose};
+  poses.push_back(poses[0].Compose(g.edges[0].measurement));
+  poses.push_back(poses[1].Compose(g.edges[1].measurement));
+  const std::vector<Eigen::Matrix3d> C = MarginalCovariances(g, poses, {0, 1, 2});
+  ASSERT_EQ(C.size(), 3u);
+  EXPECT_EQ(C[0], Eigen::Matrix3d::Zero());
+  Eigen::Matrix3d J = Eigen::Matrix3d::Identity();  // ∂e/∂x1 = blockdiag(R_01ᵀ R_0ᵀ, 1)
+  J.topLeftCorner<2, 2>() =
+      (poses[0].rotation() * g.edges[0].measurement.rotation()).transpose();
+  const Eigen::Matrix3d expected = J.inverse() * info.inverse() * J.inverse().transpose();
+  EXPECT_LT((C[1] - expected).norm(), 1e-9 * expected.norm());
+  EXPECT_GT(C[2].trace(), C[1].trace());
+  g.vertices.push_back({3, Pose2()});  // reached by no edge
+  poses.push_back(Pose2());
+  EXPECT_THROW(MarginalCovariances(g, poses, {3}), std::invalid_argument);
+}
+
 TEST(PoseGraphOptimizer, BadGraphsAreRejected) {
   PoseGraph g = Square({0, 0});
   EXPECT_THROW(OptimizePoseGraph(g, {Pose2()}), std::invalid_argument);  // one pose for four

@@ -47,6 +47,15 @@ struct PoseGraphSolution {
 PoseGraphSolution OptimizePoseGraph(const PoseGraph& graph, const std::vector<Pose2>& initial,
                                     const PoseGraphOptimizerParams& params = {});
 
+// The marginal covariances (x, y, θ) of the vertices `vertex_ids` at `poses` (a solution), from
+// the Gauss-Newton information of the same problem (robust losses as in `params`), the first
+// vertex fixed: its covariance is zero. Throws std::invalid_argument when the information is
+// singular (a vertex no edge reaches).
+std::vector<Eigen::Matrix3d> MarginalCovariances(const PoseGraph& graph,
+                                                 const std::vector<Pose2>& poses,
+                                                 const std::vector<int>& vertex_ids,
+                                                 const PoseGraphOptimizerParams& params = {});
+
 // The files' initial values, in vertex order.
 std::vector<Pose2> InitialPoses(const PoseGraph& graph);
 
