@@ -29,8 +29,8 @@ struct SmootherSighting {
 
 struct LandmarkSmootherParams {
   int max_iterations = 30;
-  // Converged once no pose or landmark coordinate moves by more than this in an iteration
-  // (metres and radians alike).
+  // Converged once no step changes the unknowns by more than tolerance × 10⁻⁶ relative to their
+  // size (Ceres' parameter tolerance), or the cost no longer falls.
   double tolerance = 1e-6;
 };
 
@@ -44,12 +44,13 @@ struct LandmarkSmootherResult {
 };
 
 // The batch maximum a posteriori of a path and its point landmarks with the associations given
-// (Gauss–Newton on the sparse normal equations, as in Dellaert and Kaess, "Square Root SAM",
-// 2006): the reference for a log without ground truth, against which a filter's causal estimate
-// and final map can be compared. Pose 0 stays at initial_poses[0] (the gauge); landmarks start
-// at the mean of their sightings from the initial poses. Gauss–Newton finds the optimum near its
-// start, so the initial path must already have its loops closed (an EKF with the same
-// associations gives one; dead reckoning over a long log does not).
+// (the least squares of Dellaert and Kaess, "Square Root SAM", 2006, solved by optim's factors
+// on Ceres: Levenberg-Marquardt, sparse normal Cholesky): the reference for a log without ground
+// truth, against which a filter's causal estimate and final map can be compared. Pose 0 stays at
+// initial_poses[0] (the gauge); landmarks start at the mean of their sightings from the initial
+// poses. A local method finds the optimum near its start, so the initial path must already have
+// its loops closed (an EKF with the same associations gives one; dead reckoning over a long log
+// does not).
 // std::invalid_argument on an index out of range, a covariance that is not positive definite, or
 // a pose or landmark nothing constrains (the normal equations are then singular).
 LandmarkSmootherResult SmoothLandmarkSlam(std::span<const Pose2> initial_poses,
