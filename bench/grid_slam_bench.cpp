@@ -11,6 +11,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include "slamkit/filters/graph/correlative_matcher.hpp"
 #include "slamkit/filters/grid/rbpf_grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 #include "slamkit/planning/structure_predictor.hpp"
@@ -156,6 +157,42 @@ void BM_StructurePredictor(benchmark::State& state) {
   state.counters["alignments"] = alignments;
 }
 
+// The loop-closure search of a graph back end: the last Intel scan matched against the whole
+// Intel map from 0.5 m and 0.1 rad off, over ±1 m and ±0.2 rad, exhaustively (0) and by branch
+// and bound (1); the same match either way (tests/filters/graph).
+void BM_CorrelativeMatcher(benchmark::State& state) {
+  const BuiltMap* built = IntelMap();
+  if (!built) return state.SkipWithError("intel.clf not found");
+  const LaserScan& scan = IntelLog()->scans.back();
+  std::vector<Eigen::Vector2d> points;  // in the robot frame
+  for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
+    if (!scan.IsReturn(i) || scan.ranges_m[i] > 30.0f) continue;
+    const double r = scan.ranges_m[i], a = scan.BeamAngle(i);
+    points.push_back(scan.laser_offset.TransformFrom({r * std::cos(a), r * std::sin(a)}));
+  }
+  CorrelativeMatcherParams params;
+  params.linear_window_m = 1.0;
+  params.angular_window_rad = 0.2;
+  params.min_score = 0.0;  // report the best whatever it scores
+  static const CorrelativeMatcher matcher(built->map, params);
+  const Pose2 start = built->path.back().pose.Compose(Pose2(0.4, -0.3, 0.1));
+  double score = 0.0;
+  for (auto _ : state) {
+    const std::optional<CorrelativeMatch> m = state.range(0) == 0
+                                                  ? matcher.Exhaustive(points, start)
+                                                  : matcher.BranchAndBound(points, start);
+    score = m ? m->score : 0.0;
+  }
+  state.counters["score"] = score;
+  const std::optional<CorrelativeMatch> m = matcher.BranchAndBound(points, start);
+  // How far the match is from the filter's own final pose, in millimetres.
+  if (m) {
+    state.counters["off_mm"] =
+        1e3 * (m->pose.translation() - built->path.back().pose.translation()).norm();
+  }
+  state.counters["points"] = double(points.size());
+}
+
 BENCHMARK(BM_GridSlamScans)
     ->Args({10, 1})->Args({30, 1})->Args({100, 1})->Args({30, 0})
     ->Unit(benchmark::kMillisecond)->Iterations(1);
@@ -163,6 +200,7 @@ BENCHMARK(BM_ScanMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EvaluatePose)
     ->Args({0, 1})->Args({1, 1})->Args({0, 3})->Args({1, 3})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StructurePredictor)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CorrelativeMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace slamkit
