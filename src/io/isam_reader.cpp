@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "slamkit/io/error.hpp"
+#include "text_records.hpp"
 
 namespace slamkit {
 namespace {
@@ -20,17 +21,6 @@ namespace {
 constexpr const char* kOdometryFields[] = {
     "i", "j", "dx", "dy", "dtheta", "c_xx", "c_xy", "c_xtheta", "c_yy", "c_ytheta", "c_thetatheta"};
 constexpr const char* kLandmarkFields[] = {"i", "l", "x", "y", "c_xx", "c_xy", "c_yy"};
-
-// A token as quoted in a message: at most 32 characters, non-printable bytes as \xNN.
-std::string Printable(std::string_view text) {
-  std::string out;
-  for (const char c : text.substr(0, 32)) {
-    const auto u = static_cast<unsigned char>(c);
-    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
-  }
-  if (text.size() > 32) out += "...";
-  return out;
-}
 
 // One whitespace-separated record; `where` (`file:line`) prefixes every error.
 class Record {
@@ -126,7 +116,7 @@ class IsamParser {
       Landmark(record);
     } else {
       record.Fail(fmt::format("unknown record '{}' (expected ODOMETRY or LANDMARK, an iSAM log)",
-                              Printable(record.Kind())));
+                              text::Printable(record.Kind())));
     }
   }
   bool empty() const { return !latest_; }

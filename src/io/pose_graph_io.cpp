@@ -50,17 +50,6 @@ constexpr EdgeFormat kToroEdge = {
     {{{0, 0}, {0, 1}, {1, 1}, {2, 2}, {0, 2}, {1, 2}}},
     "TORO order I11 I12 I22 I33 I13 I23"};
 
-// A token as quoted in a message: at most 32 characters, non-printable bytes as \xNN.
-std::string Printable(std::string_view text) {
-  std::string out;
-  for (const char c : text.substr(0, 32)) {
-    const auto u = static_cast<unsigned char>(c);
-    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
-  }
-  if (text.size() > 32) out += "...";
-  return out;
-}
-
 // A text line has no control bytes but tab and CR (a binary file has NULs and others early on).
 void CheckText(std::string_view line, const std::string& where) {
   for (std::size_t i = 0; i < line.size(); ++i) {
@@ -76,7 +65,7 @@ void CheckText(std::string_view line, const std::string& where) {
 void ExpectFields(const text::Fields& fields, std::span<const char* const> names) {
   if (fields.size() > names.size()) {
     fields.Fail({names.back()}, fmt::format("followed by an extra field ('{}'; expected {} fields)",
-                                            Printable(fields.Text(names.size())), names.size()));
+                                            text::Printable(fields.Text(names.size())), names.size()));
   }
   fields.Expect(names.size(), names);
 }
@@ -86,7 +75,7 @@ int Id(const text::Fields& fields, std::size_t i, const char* name) {
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size()) {
-    fields.Fail({name}, fmt::format("not an integer id ('{}')", Printable(text)));
+    fields.Fail({name}, fmt::format("not an integer id ('{}')", text::Printable(text)));
   }
   return value;
 }
@@ -143,7 +132,7 @@ class PoseGraphParser {
       Id(fields, 1, "id2");
     } else {
       throw InputError(fmt::format("{}: field 'tag': unknown tag '{}' (expected {})",
-                                   fields.where(), Printable(tag), kKnownTags));
+                                   fields.where(), text::Printable(tag), kKnownTags));
     }
   }
 

@@ -71,6 +71,17 @@ bool LineReader::Refill() {
   return true;
 }
 
+// A token as quoted in a message: at most 32 characters, non-printable bytes as \xNN.
+std::string Printable(std::string_view text) {
+  std::string out;
+  for (const char c : text.substr(0, 32)) {
+    const auto u = static_cast<unsigned char>(c);
+    out += u >= 0x20 && u < 0x7f ? std::string(1, c) : fmt::format("\\x{:02x}", u);
+  }
+  if (text.size() > 32) out += "...";
+  return out;
+}
+
 void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
   tokens->clear();
   std::size_t i = 0;

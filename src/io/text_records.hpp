@@ -51,6 +51,9 @@ class LineReader {
   int line_number_ = 0;
 };
 
+// A token as quoted in a message: at most 32 characters, non-printable bytes as \xNN.
+std::string Printable(std::string_view text);
+
 // Splits at spaces, tabs and carriage returns into `tokens` (cleared first).
 void Tokenize(std::string_view line, std::vector<std::string_view>* tokens);
 
