@@ -102,8 +102,7 @@ struct Fleet {
   std::vector<LandmarkId> ids;
 };
 
-
-// Every mode on run r's fleet.
+// Every mode on run r's fleet (and, for run 0 only, its world: the figures draw it).
 struct RunOutputs {
   std::vector<CoopModeResult> modes;
   LandmarkWorld world;
@@ -124,7 +123,7 @@ CoopStudyResult Study(int runs, int vehicles, const std::vector<CoopMode>& modes
   const auto run_one = [&](int r) {
     const Fleet fleet = fleet_of(r);
     RunOutputs out;
-    out.world = fleet.truth.world;
+    if (r == 0) out.world = fleet.truth.world;
     for (const CoopMode mode : modes) {
       out.modes.push_back(RunCoopMode(fleet.log, fleet.truth, fleet.ids, mode, params, seed + r));
     }
