@@ -12,6 +12,7 @@
 
 #include "options.hpp"
 #include "slamkit/io/grid_writers.hpp"
+#include "slamkit/io/pose_graph_io.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/report/figures.hpp"
 #include "slamkit/runners/grid/grid_config.hpp"
@@ -49,6 +50,7 @@ int WriteGridOutputs(const std::filesystem::path& dir, const GridRunResult& resu
   WriteTumTrajectory(dir / "trajectory.tum", WithIncreasingTimes(result.trajectory, 1e-6, &moved));
   if (!odometry.empty()) WriteTumTrajectory(dir / "odometry.tum", WithIncreasingTimes(odometry));
   WriteOccupancyGridPgm(dir / "map.pgm", result.map);
+  if (result.graph) WritePoseGraphG2o(dir / "graph.g2o", result.pose_graph);
   // map.png is the figure (cropped, the paths over it, a scale bar); map.pgm holds every cell.
 #ifdef __GLIBC__
   // The filter's particles and maps are gone by now, but glibc keeps their freed pages; handing
@@ -101,8 +103,14 @@ void WritePredictionOutputs(const std::filesystem::path& dir, const GridRunResul
 }
 
 void PrintGridRun(const std::string& source, const GridRunResult& result, int particles) {
-  fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", source, result.scans,
-             result.updates, result.resamples, particles);
+  if (result.graph) {
+    const GraphSlamStats& g = *result.graph;
+    fmt::print("{}: {} scans, {} nodes, {} submaps, {} loop closures ({} disagreeing)\n", source,
+               result.scans, g.nodes, g.submaps, g.loop_closures, g.loop_closures_disagreeing);
+  } else {
+    fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", source, result.scans,
+               result.updates, result.resamples, particles);
+  }
   fmt::print("  {:<28}{:>12.2f}\n", "wall time [s]", result.wall_time_s);
   fmt::print("  {:<28}{:>12.1f}\n", "scans per second", result.scans / result.wall_time_s);
   fmt::print("  {:<28}{:>12.1f}\n", "peak memory [MiB]", PeakRssMib());

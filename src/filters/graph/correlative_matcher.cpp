@@ -32,7 +32,6 @@ CorrelativeMatcher::CorrelativeMatcher(const OccupancyGrid& map,
   y0_ = (empty ? 0 : map.min_cell().y) - margin;
   width_ = empty ? 1 : map.max_cell().x - map.min_cell().x + 1 + margin;
   height_ = empty ? 1 : map.max_cell().y - map.min_cell().y + 1 + margin;
-  window_cells_ = static_cast<int>(std::ceil(params.linear_window_m / resolution_m_));
   levels_.resize(static_cast<std::size_t>(params.branch_and_bound_depth));
   const std::size_t n = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   levels_[0].value.assign(n, 0.0f);
@@ -58,33 +57,42 @@ CorrelativeMatcher::CorrelativeMatcher(const OccupancyGrid& map,
   }
 }
 
-std::vector<CorrelativeMatcher::Rotated> CorrelativeMatcher::RotatedScans(
-    const std::vector<Eigen::Vector2d>& points, const Pose2& initial) const {
+CorrelativeMatcher::Query CorrelativeMatcher::MakeQuery(
+    const std::vector<Eigen::Vector2d>& points, const Pose2& initial,
+    const std::optional<CorrelativeWindow>& window) const {
+  const CorrelativeWindow w =
+      window.value_or(CorrelativeWindow{params_.linear_window_m, params_.angular_window_rad});
+  if (!(w.linear_m >= 0.0 && w.angular_rad >= 0.0 && std::isfinite(w.linear_m) &&
+        std::isfinite(w.angular_rad))) {
+    throw std::invalid_argument("correlative matcher: a window must be finite and >= 0");
+  }
+  Query q;
+  q.window_cells = static_cast<int>(std::ceil(w.linear_m / resolution_m_));
   double reach = 0.0;
   for (const Eigen::Vector2d& p : points) reach = std::max(reach, p.norm());
   double step = params_.angular_step_rad;
   if (step <= 0.0) {
     const double r = resolution_m_;
-    step = reach > r ? std::acos(1.0 - r * r / (2.0 * reach * reach)) : params_.angular_window_rad;
+    step = reach > r ? std::acos(1.0 - r * r / (2.0 * reach * reach)) : w.angular_rad;
   }
-  const int n = step > 0.0 ? static_cast<int>(std::ceil(params_.angular_window_rad / step)) : 0;
-  std::vector<Rotated> out;
+  const int n = step > 0.0 ? static_cast<int>(std::ceil(w.angular_rad / step)) : 0;
   for (int k = -n; k <= n; ++k) {
     Rotated r;
     r.theta = initial.theta() + k * step;
     const Pose2 pose(initial.x(), initial.y(), r.theta);
     for (const Eigen::Vector2d& p : points) {
-      const Eigen::Vector2d w = pose.TransformFrom(p) / resolution_m_;
-      r.cells.emplace_back(static_cast<int>(std::floor(w.x())), static_cast<int>(std::floor(w.y())));
+      const Eigen::Vector2d c = pose.TransformFrom(p) / resolution_m_;
+      r.cells.emplace_back(static_cast<int>(std::floor(c.x())), static_cast<int>(std::floor(c.y())));
     }
-    out.push_back(std::move(r));
+    q.rotations.push_back(std::move(r));
   }
-  return out;
+  return q;
 }
 
-double CorrelativeMatcher::Score(const Rotated& r, int dx, int dy, int level) const {
-  ++last_scored_;
+double CorrelativeMatcher::Score(Query& q, int rotation, int dx, int dy, int level) const {
+  ++q.scored;
   const std::vector<float>& grid = levels_[static_cast<std::size_t>(level)].value;
+  const Rotated& r = q.rotations[static_cast<std::size_t>(rotation)];
   double sum = 0.0;
   for (const Eigen::Vector2i& c : r.cells) {
     const int x = c.x() + dx - x0_, y = c.y() + dy - y0_;
@@ -93,26 +101,29 @@ double CorrelativeMatcher::Score(const Rotated& r, int dx, int dy, int level) co
   return sum / static_cast<double>(r.cells.size());
 }
 
-std::optional<CorrelativeMatch> CorrelativeMatcher::Result(const std::vector<Rotated>& rotations,
-                                                           const Candidate& best,
-                                                           const Pose2& initial) const {
+std::optional<CorrelativeMatch> CorrelativeMatcher::Result(const Query& q, const Candidate& best,
+                                                           const Pose2& initial,
+                                                           long* scored) const {
+  if (scored) *scored = q.scored;
   if (best.rotation < 0) return std::nullopt;
   return CorrelativeMatch{Pose2(initial.x() + best.dx * resolution_m_,
                                 initial.y() + best.dy * resolution_m_,
-                                rotations[static_cast<std::size_t>(best.rotation)].theta),
+                                q.rotations[static_cast<std::size_t>(best.rotation)].theta),
                           best.score};
 }
 
 std::optional<CorrelativeMatch> CorrelativeMatcher::Exhaustive(
-    const std::vector<Eigen::Vector2d>& points, const Pose2& initial) const {
+    const std::vector<Eigen::Vector2d>& points, const Pose2& initial,
+    const std::optional<CorrelativeWindow>& window, long* scored) const {
   if (points.empty()) return std::nullopt;
-  const std::vector<Rotated> rotations = RotatedScans(points, initial);
+  Query q = MakeQuery(points, initial, window);
+  const int w = q.window_cells;
   Candidate best{-1, 0, 0, 0, params_.min_score};
   bool found = false;
-  for (int k = 0; k < static_cast<int>(rotations.size()); ++k) {
-    for (int dx = -window_cells_; dx <= window_cells_; ++dx) {
-      for (int dy = -window_cells_; dy <= window_cells_; ++dy) {
-        const double s = Score(rotations[static_cast<std::size_t>(k)], dx, dy, 0);
+  for (int k = 0; k < static_cast<int>(q.rotations.size()); ++k) {
+    for (int dx = -w; dx <= w; ++dx) {
+      for (int dy = -w; dy <= w; ++dy) {
+        const double s = Score(q, k, dx, dy, 0);
         if (s > best.score || (!found && s >= best.score)) {
           best = {k, dx, dy, 0, s};
           found = true;
@@ -120,13 +131,12 @@ std::optional<CorrelativeMatch> CorrelativeMatcher::Exhaustive(
       }
     }
   }
-  return Result(rotations, best, initial);
+  return Result(q, best, initial, scored);
 }
 
 // Depth first, the best child first; a candidate whose bound cannot beat the best is dropped
 // with everything below it (the bound: a level-h cell is the max of the cells it covers).
-void CorrelativeMatcher::Search(const std::vector<Rotated>& rotations, const Candidate& c,
-                                Candidate* best) const {
+void CorrelativeMatcher::Search(Query& q, const Candidate& c, Candidate* best) const {
   if (c.score <= best->score && best->rotation >= 0) return;
   if (c.score < best->score) return;
   if (c.level == 0) {
@@ -138,36 +148,34 @@ void CorrelativeMatcher::Search(const std::vector<Rotated>& rotations, const Can
   for (const int ox : {0, s}) {
     for (const int oy : {0, s}) {
       const int dx = c.dx + ox, dy = c.dy + oy;
-      if (dx > window_cells_ || dy > window_cells_) continue;
-      children.push_back({c.rotation, dx, dy, c.level - 1,
-                          Score(rotations[static_cast<std::size_t>(c.rotation)], dx, dy,
-                                c.level - 1)});
+      if (dx > q.window_cells || dy > q.window_cells) continue;
+      children.push_back({c.rotation, dx, dy, c.level - 1, Score(q, c.rotation, dx, dy, c.level - 1)});
     }
   }
   std::sort(children.begin(), children.end(),
             [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
-  for (const Candidate& child : children) Search(rotations, child, best);
+  for (const Candidate& child : children) Search(q, child, best);
 }
 
 std::optional<CorrelativeMatch> CorrelativeMatcher::BranchAndBound(
-    const std::vector<Eigen::Vector2d>& points, const Pose2& initial) const {
-  last_scored_ = 0;
+    const std::vector<Eigen::Vector2d>& points, const Pose2& initial,
+    const std::optional<CorrelativeWindow>& window, long* scored) const {
   if (points.empty()) return std::nullopt;
-  const std::vector<Rotated> rotations = RotatedScans(points, initial);
-  const int top = params_.branch_and_bound_depth - 1, step = 1 << top;
+  Query q = MakeQuery(points, initial, window);
+  const int top = params_.branch_and_bound_depth - 1, step = 1 << top, w = q.window_cells;
   std::vector<Candidate> candidates;
-  for (int k = 0; k < static_cast<int>(rotations.size()); ++k) {
-    for (int dx = -window_cells_; dx <= window_cells_; dx += step) {
-      for (int dy = -window_cells_; dy <= window_cells_; dy += step) {
-        candidates.push_back({k, dx, dy, top, Score(rotations[static_cast<std::size_t>(k)], dx, dy, top)});
+  for (int k = 0; k < static_cast<int>(q.rotations.size()); ++k) {
+    for (int dx = -w; dx <= w; dx += step) {
+      for (int dy = -w; dy <= w; dy += step) {
+        candidates.push_back({k, dx, dy, top, Score(q, k, dx, dy, top)});
       }
     }
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate& a, const Candidate& b) { return a.score > b.score; });
   Candidate best{-1, 0, 0, 0, params_.min_score};
-  for (const Candidate& c : candidates) Search(rotations, c, &best);
-  return Result(rotations, best, initial);
+  for (const Candidate& c : candidates) Search(q, c, &best);
+  return Result(q, best, initial, scored);
 }
 
 }  // namespace slamkit

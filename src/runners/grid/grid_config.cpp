@@ -184,17 +184,70 @@ void AddGrid(OccupancyGridParams& g, ParamTable& t) {
   t.insert(t.end(), lines.begin(), lines.end());
 }
 
+void AddGraph(GraphGridSlamParams& g, ParamTable& t) {
+  using config::Integer;
+  using config::Number;
+  const std::string s = "graph", l = "graph.loop";
+  LoopClosureParams& c = g.loop;
+  const ParamTable lines = {
+      Number(s, "node_min_translation_m", &g.node_min_translation_m, kNonNeg, "m",
+             "a scan is a node once the front end has moved this far from the last"),
+      Number(s, "node_min_rotation_rad", &g.node_min_rotation_rad, kNonNeg, "rad",
+             "... or turned this far"),
+      Integer(s, "nodes_per_submap", &g.submaps.nodes_per_submap, 1,
+              "a submap is started every this many nodes and holds twice as many"),
+      Number(s, "local_sigma_xy_m", &g.local_sigma_xy_m, kPos, "m",
+             "noise of the front end's motion between consecutive nodes"),
+      Number(s, "local_sigma_theta_rad", &g.local_sigma_theta_rad, kPos, "rad", "... in heading"),
+      config::Choice(s, "loop_loss", &g.loop_loss.kind, {"none", "huber", "cauchy", "dcs"},
+                     "robust loss of loop closures"),
+      Number(s, "loop_loss_scale", &g.loop_loss.scale, kPos, "", "its scale (whitened units)"),
+      Integer(s, "optimize_every_nodes", &g.optimize_every_nodes, 1,
+              "background search and optimisation every this many nodes"),
+      Integer(s, "max_iterations", &g.max_iterations, 1, "iterations per optimisation"),
+      Integer(s, "final_max_iterations", &g.final_max_iterations, 1, "... of the final one"),
+      config::AtMost(Number(l, "min_score", &c.matcher.min_score, kNonNeg, "",
+                            "a closure's correlative score (mean occupancy) at least this"),
+                     1.0),
+      config::AtMost(Integer(l, "branch_and_bound_depth", &c.matcher.branch_and_bound_depth, 1,
+                             "precomputed grids of the branch and bound"),
+                     16),
+      Number(l, "base_linear_window_m", &c.base_linear_window_m, kNonNeg, "m",
+             "search window +- this in x and y ..."),
+      Number(l, "linear_window_growth", &c.linear_window_growth, kNonNeg, "m/m",
+             "... plus this per metre driven since the node was last tied to the submap"),
+      Number(l, "max_linear_window_m", &c.max_linear_window_m, kNonNeg, "m", "... at most this"),
+      Number(l, "base_angular_window_rad", &c.base_angular_window_rad, kNonNeg, "rad",
+             "search window +- this in heading ..."),
+      Number(l, "angular_window_growth_rad_per_m", &c.angular_window_growth_rad_per_m, kNonNeg,
+             "rad/m", "... plus this per metre driven"),
+      Number(l, "max_angular_window_rad", &c.max_angular_window_rad, kNonNeg, "rad",
+             "... at most this"),
+      Number(l, "max_node_distance_m", &c.max_node_distance_m, kNonNeg, "m",
+             "search a submap with a node within window + this"),
+      Integer(l, "node_stride", &c.node_stride, 1, "search every k-th node"),
+      Number(l, "sigma_xy_m", &c.sigma_xy_m, kPos, "m", "a closure's noise in x and y"),
+      Number(l, "sigma_theta_rad", &c.sigma_theta_rad, kPos, "rad", "... in heading"),
+  };
+  t.insert(t.end(), lines.begin(), lines.end());
+  AddMatcher("graph.matcher", g.matcher, t);
+  AddMatcher("graph.loop.refinement", c.refinement, t);
+}
+
 }  // namespace
 
 config::ParamTable GridParamTable(GridSlamConfig& config) {
   RbpfGridSlamParams& p = config.rbpf;
-  ParamTable t = {config::Choice("", "backend", &config.backend, GridBackendNames(),
-                                 "the grid SLAM (rbpf: RbpfGridSlam)")};
+  ParamTable t = {config::WithFlag(
+      config::Choice("", "backend", &config.backend, GridBackendNames(),
+                     "the grid SLAM: rbpf (particle filter) or graph (submaps and a pose graph)"),
+      "--backend")};
   AddTop(p, t);
   AddMotion(p, t);
   AddMatching(p, t);
   AddTracking(p, t);
   AddGrid(p.grid, t);
+  AddGraph(config.graph, t);
   return t;
 }
 

@@ -43,6 +43,17 @@ void CheckHasScans(const CarmenLog& log) {
   }
 }
 
+nlohmann::json GraphStatsJson(const GraphSlamStats& g) {
+  return {{"nodes", g.nodes},
+          {"submaps", g.submaps},
+          {"loop_closures", g.loop_closures},
+          {"loop_closures_disagreeing", g.loop_closures_disagreeing},
+          {"optimizations", g.optimizations},
+          {"search_time_s", g.search_time_s},
+          {"optimization_time_s", g.optimization_time_s},
+          {"final_chi2", g.final_chi2}};
+}
+
 }  // namespace
 
 GridRunResult RunGridSlam(const CarmenLog& log, GridSlam& slam,
@@ -56,6 +67,7 @@ GridRunResult RunGridSlam(const CarmenLog& log, GridSlam& slam,
       slam.ProcessScan(log.scans[i]);
       if (progress && (i % 100 == 99 || i + 1 == total)) progress(i + 1, total);
     }
+    slam.Finish();
     slam.CheckOutputHealth();
     out.trajectory = slam.BestTrajectory();
     out.map = slam.BestMap();
@@ -63,6 +75,8 @@ GridRunResult RunGridSlam(const CarmenLog& log, GridSlam& slam,
     out.updates = stats.updates;
     out.resamples = stats.resamples;
     out.heading_drift_in_use_rad_per_m = stats.heading_drift_in_use_rad_per_m;
+    out.graph = stats.graph;
+    if (const PoseGraph* graph = slam.FinalGraph()) out.pose_graph = *graph;
   });
   out.scans = total;
   out.odometry_heading_drift = FitLogOdometry(log, out.trajectory);
@@ -127,6 +141,7 @@ nlohmann::json GridMetrics(const GridRunResult& r, const GridSlamConfig& config,
     j["odometry_heading_drift"] = HeadingDriftJson(*r.odometry_heading_drift, {});
   }
   j["heading_drift_in_use_rad_per_m"] = r.heading_drift_in_use_rad_per_m;
+  if (r.graph) j["graph"] = GraphStatsJson(*r.graph);
   return j;
 }
 

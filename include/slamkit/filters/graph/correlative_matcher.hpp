@@ -24,6 +24,12 @@ struct CorrelativeMatcherParams {
   double min_score = 0.55;          // a match scoring less is no match
 };
 
+// A search window around the initial pose: ± linear_m in x and in y, ± angular_rad in θ.
+struct CorrelativeWindow {
+  double linear_m = 3.0;
+  double angular_rad = 0.35;
+};
+
 struct CorrelativeMatch {
   Pose2 pose;          // the scan's pose in the map frame
   double score = 0.0;  // the mean over the points of the map's occupancy at their cells
@@ -38,14 +44,17 @@ class CorrelativeMatcher {
   CorrelativeMatcher(const OccupancyGrid& map, const CorrelativeMatcherParams& params = {});
 
   // The best pose over the window around `initial` (points in the scan's frame, metres), if it
-  // scores at least min_score. Exhaustive tries every candidate; BranchAndBound gives the same
-  // best score (ties aside, the same pose) visiting far fewer.
+  // scores at least min_score; the window is the params' unless given. Exhaustive tries every
+  // candidate; BranchAndBound gives the same best score (ties aside, the same pose) visiting far
+  // fewer. With `scored`, the candidates scored at any level (for benchmarks). Both are safe to
+  // call from several threads at once.
   std::optional<CorrelativeMatch> Exhaustive(const std::vector<Eigen::Vector2d>& points,
-                                             const Pose2& initial) const;
-  std::optional<CorrelativeMatch> BranchAndBound(const std::vector<Eigen::Vector2d>& points,
-                                                 const Pose2& initial) const;
-  // Candidates scored by the last BranchAndBound call, at any level (for benchmarks).
-  long last_candidates_scored() const { return last_scored_; }
+                                             const Pose2& initial,
+                                             const std::optional<CorrelativeWindow>& window = {},
+                                             long* scored = nullptr) const;
+  std::optional<CorrelativeMatch> BranchAndBound(
+      const std::vector<Eigen::Vector2d>& points, const Pose2& initial,
+      const std::optional<CorrelativeWindow>& window = {}, long* scored = nullptr) const;
 
  private:
   struct Grid {  // one level: each cell the max of the 2^level × 2^level cells from it
@@ -59,19 +68,22 @@ class CorrelativeMatcher {
     int rotation = 0, dx = 0, dy = 0, level = 0;
     double score = 0.0;
   };
-  std::vector<Rotated> RotatedScans(const std::vector<Eigen::Vector2d>& points,
-                                    const Pose2& initial) const;
-  double Score(const Rotated& r, int dx, int dy, int level) const;
-  std::optional<CorrelativeMatch> Result(const std::vector<Rotated>& rotations,
-                                         const Candidate& best, const Pose2& initial) const;
-  void Search(const std::vector<Rotated>& rotations, const Candidate& c, Candidate* best) const;
+  struct Query {  // one call's scan, window and count
+    std::vector<Rotated> rotations;
+    int window_cells = 0;
+    long scored = 0;
+  };
+  Query MakeQuery(const std::vector<Eigen::Vector2d>& points, const Pose2& initial,
+                  const std::optional<CorrelativeWindow>& window) const;
+  double Score(Query& q, int rotation, int dx, int dy, int level) const;
+  std::optional<CorrelativeMatch> Result(const Query& q, const Candidate& best,
+                                         const Pose2& initial, long* scored) const;
+  void Search(Query& q, const Candidate& c, Candidate* best) const;
 
   CorrelativeMatcherParams params_;
   double resolution_m_ = 0.0;
   int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;  // the map's written cells
-  int window_cells_ = 0;
   std::vector<Grid> levels_;
-  mutable long last_scored_ = 0;
 };
 
 }  // namespace slamkit

@@ -200,7 +200,8 @@ class RbpfGridSlam final : public GridSlam {
   GridSlamStats Stats() const override {
     return {.updates = updates_,
             .resamples = resamples_,
-            .heading_drift_in_use_rad_per_m = heading_drift_rad_per_m_};
+            .heading_drift_in_use_rad_per_m = heading_drift_rad_per_m_,
+            .graph = std::nullopt};
   }
 
  private:

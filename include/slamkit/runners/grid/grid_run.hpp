@@ -30,6 +30,9 @@ struct GridRunResult {
   // The calibration the filter ended with: the configured one, or with estimate_heading_drift
   // its running estimate.
   double heading_drift_in_use_rad_per_m = 0.0;
+  // A graph back end's counts and optimised graph (unset and empty for the others).
+  std::optional<GraphSlamStats> graph;
+  PoseGraph pose_graph;
 };
 
 // `slam` over every scan of `log`; `progress(done, total)` is called every few scans from the
