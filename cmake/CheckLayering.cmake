@@ -23,14 +23,14 @@ set(modules core models maps optim features filters planning sim io eval runners
 # runners take (LandmarkSlamFilter, GridSlam). A family not listed may include none.
 set(families_filters top association particles ekf selection ekf_slam fastslam grid features
     cooperative graph)
-set(allowed_filters_top association)
+set(allowed_filters_top association grid graph)
 set(allowed_filters_selection ekf)
 set(allowed_filters_ekf_slam top association ekf selection)
 set(allowed_filters_fastslam top association particles ekf)
 set(allowed_filters_grid top particles)
 set(allowed_filters_features top association ekf selection ekf_slam)
 set(allowed_filters_cooperative top association ekf selection ekf_slam)
-set(allowed_filters_graph top)
+set(allowed_filters_graph top grid)
 set(families_runners common landmark grid features cooperative graph)
 set(allowed_runners_landmark common)
 set(allowed_runners_grid common)

@@ -34,9 +34,10 @@ function(slamkit_target_options target)
       -fno-sanitize=alignment,null,pointer-overflow,object-size,bounds)
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
-  if(SLAMKIT_BUILD_FUZZ)
-    # Coverage feedback for libFuzzer from every target; only the harnesses (fuzz/) link the
-    # fuzzer's main (-fsanitize=fuzzer).
+  if(SLAMKIT_BUILD_FUZZ AND target IN_LIST SLAMKIT_FUZZ_COVERAGE_TARGETS)
+    # Coverage feedback for libFuzzer from the modules the readers live in (the fuzz harnesses
+    # call nothing else that parses); only the harnesses (fuzz/) link the fuzzer's main
+    # (-fsanitize=fuzzer). Instrumenting every target made each compile about a fifth slower.
     target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
   endif()
 endfunction()
@@ -127,6 +128,11 @@ function(slamkit_test)
     add_dependencies(${name} slamkit)
   endif()
   slamkit_target_options(${name})
+  if(SLAMKIT_SANITIZE)
+    # Test code at -O0 in the sanitizer build (the library stays at -O1, where the tests spend
+    # their time): it compiles in about two thirds of the time.
+    target_compile_options(${name} PRIVATE -O0)
+  endif()
   include(GoogleTest)
   gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
   if("slow" IN_LIST ARG_LABELS OR "release" IN_LIST ARG_LABELS)

@@ -5,9 +5,9 @@
 # on paths relative to the checkout, so a second clone reuses them).
 #   release  GCC, -O3: the library, the `slamkit` program, the tests and the benchmarks.
 #   asan     clang with AddressSanitizer and UndefinedBehaviorSanitizer at -O1 (asserts and
-#            Eigen's index checks on): the tests not labelled `slow` (test.sh runs those in
-#            Release only), the program they run, and the libFuzzer harnesses of the input
-#            readers (fuzz/, scripts/fuzz.sh), all in one tree.
+#            Eigen's index checks on; test code at -O0): the tests not labelled `slow` or
+#            needing the program (test.sh runs those in Release only) and the libFuzzer
+#            harnesses of the input readers (fuzz/, scripts/fuzz.sh), all in one tree.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -43,7 +43,7 @@ case "$flavour" in
   asan)
     env_args=(CC=clang CXX=clang++)
     args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_BUILD_FUZZ=ON
-          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF) ;;
+          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF -DSLAMKIT_BUILD_APPS=OFF) ;;
   *) echo "setup: unknown build '$flavour' (release|asan)" >&2; exit 2 ;;
 esac
 build=build/$flavour

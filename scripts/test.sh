@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets everything up, then runs the whole test suite, each test in the build where it tells
 # something: in the sanitizer build (clang, ASan and UBSan at -O1, asserts on) every test but
-# those labelled `slow`; in the Release build (GCC, -O3, -march=native: what users run) the slow
-# ones and those labelled `release` (the toolchain and processor checks), then the installed
+# those labelled `slow` and those that run the program; in the Release build (GCC, -O3,
+# -march=native: what users run) the slow ones and those labelled `release` (the toolchain and
+# processor checks, the command-line tests), then the installed
 # package (examples/cpp built against it); last, a short libFuzzer smoke run of every input
 # reader's harness (fuzz/, scripts/fuzz.sh) from the sanitizer build. Each step prints its time.
 # `ctest` in build/release runs every test in Release too (scripts/setup.sh release builds them).
@@ -31,9 +32,9 @@ step "sanitizer build"
 (cd build/asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j "$(nproc)" -LE slow)
 step "sanitizer tests"
-# 8 s per harness (thousands of inputs each), as many at once as there are cores: long enough to
+# 5 s per harness (thousands of inputs each), as many at once as there are cores: long enough to
 # catch a reader change that crashes on its seed corpus or on simple mutations of it; real
 # campaigns are scripts/fuzz.sh READER 600. Each run prints its own result line; xargs fails when
 # any of them does.
-ls fuzz/corpus | xargs -P "$(nproc)" -I{} scripts/fuzz.sh {} 8  # a corpus folder per harness
+ls fuzz/corpus | xargs -P "$(nproc)" -I{} scripts/fuzz.sh {} 5  # a corpus folder per harness
 step "fuzz smoke"

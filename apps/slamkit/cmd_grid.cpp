@@ -34,6 +34,7 @@ struct GridOptions {
   bool frame_odometry = false;   // keep the log's odometry frame instead of starting at the origin
   bool seed_given = false;       // --seed and --particles override --config
   bool particles_given = false;
+  bool backend_given = false;
   GridSlamConfig slam;  // the filter options' values
   std::string predict = "off";
   std::string recovery = "on";
@@ -63,6 +64,7 @@ GridSlamConfig EffectiveParams(const GridOptions& o, Trajectory* odometry) {
     params = LoadGridConfig(o.config);
     if (o.seed_given) params.rbpf.seed = o.slam.rbpf.seed;
     if (o.particles_given) params.rbpf.particles = o.slam.rbpf.particles;
+    if (o.backend_given) params.backend = o.slam.backend;
   }
   if (o.frame_odometry) {
     params.rbpf.initial_pose = odometry->front().pose;
@@ -95,6 +97,9 @@ int RunGridCommand(const GridOptions& o) {
   const std::optional<Trajectory> reference = LoadReference(o.input, log);
   Trajectory odometry = OdometryTrajectory(log);
   const GridSlamConfig params = EffectiveParams(o, &odometry);
+  if (o.predict == "on" && params.backend != GridBackend::kRbpf) {
+    throw InputError("grid: --predict on needs the rbpf back end (P-SLAM weighs particles)");
+  }
   OutputDir output(o.out);
 
   auto progress = std::make_shared<Progress>("scans", static_cast<int>(log.scans.size()));
@@ -130,17 +135,18 @@ int RunGridCommand(const GridOptions& o) {
 
 void RegisterGrid(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<GridOptions>();
-  CLI::App* cmd = app.add_subcommand("grid", "occupancy-grid RBPF SLAM on a CARMEN laser log");
+  CLI::App* cmd = app.add_subcommand("grid", "occupancy-grid SLAM on a CARMEN laser log (--backend rbpf: particle filter; graph: submaps and a pose graph)");
   AddLogInputOptions(cmd, o->input);
   cmd->add_option("--out", o->out, "output directory")->required();
   const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->slam);
   CLI::Option* config =
       cmd->add_option("--config", o->config,
                       "the filter's parameters from a YAML file (configs/grid.yaml); instead of "
-                      "the filter options, but --seed and --particles override it")
+                      "the filter options, but --backend, --seed and --particles override it")
           ->check(CLI::ExistingFile);
   for (CLI::Option* option : filter_options) {
-    if (option->get_name() != "--seed" && option->get_name() != "--particles") {
+    const std::string name = option->get_name();
+    if (name != "--seed" && name != "--particles" && name != "--backend") {
       config->excludes(option);
     }
   }
@@ -175,6 +181,7 @@ void RegisterGrid(CLI::App& app, int& exit_code) {
     o->prediction.prediction.recovery = o->recovery == "on";
     o->seed_given = cmd->count("--seed") > 0;
     o->particles_given = cmd->count("--particles") > 0;
+    o->backend_given = cmd->count("--backend") > 0;
     exit_code = RunGridCommand(*o);
   });
 }

@@ -51,11 +51,13 @@ struct SuiteOptions {
   int jobs = 0;       // 0: UsableCpuCount
   std::string config;  // the grid filter's parameters, for every run
   std::string logs;    // comma-separated names: only these logs (empty: all)
+  std::string backend = "rbpf";  // rbpf, graph or both
   std::string out;
 };
 
 struct SuiteJob {
   const SuiteLog* log = nullptr;
+  std::string backend;
   std::uint64_t seed = 0;
   fs::path out;       // the run's --out
   fs::path console;   // its stdout and stderr
@@ -63,11 +65,12 @@ struct SuiteJob {
 };
 
 // The child's command line; `threads` of it, so that the runs at once share the CPUs.
-std::vector<std::string> GridArgs(const SuiteOptions& o, const SuiteLog& log, std::uint64_t seed,
-                                  const fs::path& out, int threads) {
+std::vector<std::string> GridArgs(const SuiteOptions& o, const SuiteJob& job, int threads) {
+  const SuiteLog& log = *job.log;
   std::vector<std::string> a = {"slamkit", "grid", "--log", log.log.string(), "--seed",
-                                std::to_string(seed), "--threads", std::to_string(threads),
-                                "--out", out.string()};
+                                std::to_string(job.seed), "--threads", std::to_string(threads),
+                                "--out", job.out.string()};
+  if (job.backend != "rbpf" || o.backend != "rbpf") a.insert(a.end(), {"--backend", job.backend});
   if (!o.config.empty()) a.insert(a.end(), {"--config", fs::absolute(o.config).string()});
   if (o.particles > 0) a.insert(a.end(), {"--particles", std::to_string(o.particles)});
   if (o.max_scans > 0) a.insert(a.end(), {"--max-scans", std::to_string(o.max_scans)});
@@ -114,6 +117,7 @@ std::string FailureOf(const SuiteJob& job, int status) {
 SuiteRunRecord Record(const SuiteJob& job, int status, const rusage& usage, double wall_s) {
   SuiteRunRecord r;
   r.log = job.log->name;
+  r.backend = job.backend;
   r.seed = job.seed;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   r.wall_time_s = wall_s;
@@ -181,7 +185,8 @@ MapSheetPanel PanelOf(const SuiteRunRecord& r, const fs::path& run_dir) {
   } else if (r.metrics.is_object() && r.metrics.contains("relations_trans_mean_m")) {
     figure = fmt::format(": relations {:.3f} m", r.metrics["relations_trans_mean_m"].get<double>());
   }
-  panel.title = fmt::format("{} seed {}{}", r.log, r.seed, r.failure.empty() ? figure : ": failed");
+  const std::string run = r.backend == "graph" ? "graph" : fmt::format("seed {}", r.seed);
+  panel.title = fmt::format("{} {}{}", r.log, run, r.failure.empty() ? figure : ": failed");
   panel.failed = !r.failure.empty();
   if (panel.failed) return panel;
   try {
@@ -236,16 +241,23 @@ int RunSuiteCommand(const SuiteOptions& o) {
   const fs::path& dir = output.staging();
   const int parallel = o.jobs > 0 ? o.jobs : UsableCpuCount();
   const int threads = std::max(1, UsableCpuCount() / parallel);
+  // Each log with the particle filter for every seed and, after them, with the graph once (it
+  // draws no random numbers: a seed changes nothing).
   std::vector<SuiteJob> jobs;
   for (const SuiteLog* log : logs) {
-    fs::create_directories(dir / "runs" / log->name);
-    for (std::uint64_t seed : seeds) {
-      SuiteJob job{log, seed, dir / "runs" / log->name / fmt::format("seed_{}", seed),
-                   dir / "runs" / log->name / fmt::format("seed_{}.txt", seed), {}};
-      job.args = GridArgs(o, *log, seed, job.out, threads);
-      jobs.push_back(std::move(job));
+    const fs::path runs = dir / "runs" / log->name;
+    fs::create_directories(runs);
+    if (o.backend != "graph") {
+      for (std::uint64_t seed : seeds) {
+        jobs.push_back({log, "rbpf", seed, runs / fmt::format("seed_{}", seed),
+                        runs / fmt::format("seed_{}.txt", seed), {}});
+      }
+    }
+    if (o.backend != "rbpf") {
+      jobs.push_back({log, "graph", seeds.front(), runs / "graph", runs / "graph.txt", {}});
     }
   }
+  for (SuiteJob& job : jobs) job.args = GridArgs(o, job, threads);
   const std::vector<SuiteRunRecord> records = RunJobs(jobs, parallel);
   const std::string title = fmt::format("slamkit suite: {}", o.manifest);
   WriteSuiteSummary(dir, title, records);
@@ -253,8 +265,9 @@ int RunSuiteCommand(const SuiteOptions& o) {
   output.Commit();
   int failed = 0;
   for (const SuiteRunRecord& r : records) failed += r.failure.empty() ? 0 : 1;
-  fmt::print("{} runs ({} logs x {} seeds), {} failed\nwrote {}\n", records.size(),
-             logs.size(), seeds.size(), failed, o.out);
+  const std::string graph_runs = o.backend == "rbpf" ? "" : " + 1 graph";
+  fmt::print("{} runs ({} logs x {} seeds{}), {} failed\nwrote {}\n", records.size(),
+             logs.size(), o.backend == "graph" ? 0 : seeds.size(), graph_runs, failed, o.out);
   return failed > 0 ? 1 : 0;
 }
 
@@ -274,6 +287,10 @@ void RegisterSuite(CLI::App& app, int& exit_code) {
   cmd->add_option("--config", o->config, "the grid filter's parameters for every run "
                                          "(configs/grid.yaml; see slamkit grid --config)")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--backend", o->backend,
+                  "rbpf: the particle filter for every seed; graph: the pose graph once per log "
+                  "(it draws no random numbers); both: each log with both, side by side")
+      ->check(CLI::IsMember({"rbpf", "graph", "both"}))->capture_default_str();
   cmd->add_option("--logs", o->logs, "only these logs of the manifest: NAME[,NAME...]");
   cmd->add_option("--max-scans", o->max_scans, "use only each log's first N scans (0: all)")
       ->check(NonNegativeNumber());

@@ -15,7 +15,9 @@ struct GraphSlamStats {
   int nodes = 0;
   int submaps = 0;
   int loop_closures = 0;              // accepted by the search
-  int loop_closures_disagreeing = 0;  // whose residual at the final solution is beyond 3σ
+  int loop_closures_disagreeing = 0;  // of those, whose residual at the final solution is beyond 3σ
+  int false_closures_injected = 0;    // a robustness study's (false_closure_fraction)
+  int false_closures_disagreeing = 0;
   int optimizations = 0;
   double search_time_s = 0.0;         // in the background thread, summed
   double optimization_time_s = 0.0;
@@ -34,7 +36,7 @@ struct GridSlamStats {
 // The interface every laser SLAM on occupancy grids offers to the runners (a log, the suite, a
 // simulated run), so that they take any of them: scans in, with their odometry; the best pose,
 // path and map out; a health check before output. Implemented by RbpfGridSlam; a filter is made
-// from a config by MakeGridSlam (filters/grid/grid_slam_factory.hpp).
+// from a config by MakeGridSlam (filters/grid_slam_factory.hpp).
 class GridSlam {
  public:
   virtual ~GridSlam() = default;

@@ -1,5 +1,6 @@
 #include "slamkit/filters/graph/graph_grid_slam.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -41,9 +42,13 @@ GraphGridSlam::GraphGridSlam(const GraphGridSlamParams& params)
       submaps_(params.submaps, params.grid,
                {.usable_range_m = params.usable_range_m,
                 .misses_spare_scan_hits = params.misses_spare_scan_hits,
-                .no_return_ray_length_m = params.no_return_ray_length_m}) {
+                .no_return_ray_length_m = params.no_return_ray_length_m}),
+      rng_(params.seed) {
   if (params.optimize_every_nodes < 1 || params.loop.node_stride < 1) {
     throw std::invalid_argument("graph: optimize_every_nodes and loop.node_stride must be >= 1");
+  }
+  if (!(params.false_closure_fraction >= 0.0 && params.false_closure_fraction <= 1.0)) {
+    throw std::invalid_argument("graph: false_closure_fraction must be in [0, 1]");
   }
   MakeRobustLoss(params.loop_loss);  // a bad scale throws here, not in the background
 }
@@ -167,12 +172,30 @@ void GraphGridSlam::TakeJobResult() {
   if (!job_.valid()) return;
   const std::unique_ptr<JobResult> result = job_.get();
   closures_.insert(closures_.end(), result->closures.begin(), result->closures.end());
+  injected_.resize(closures_.size(), false);
+  InjectFalseClosures(static_cast<int>(result->closures.size()));
   optimized_ = result->poses;
   stats_.optimizations += 1;
   stats_.search_time_s += result->search_time_s;
   stats_.optimization_time_s += result->optimization_time_s;
   stats_.final_chi2 = result->chi2;
   map_.reset();
+}
+
+// Each false closure joins a random node to a random submap finished before it, with a
+// measurement no scan supports; the next optimisation sees it like any other.
+void GraphGridSlam::InjectFalseClosures(int accepted) {
+  if (params_.false_closure_fraction <= 0.0 || finished_.empty()) return;
+  for (int k = 0; k < accepted; ++k) {
+    if (rng_.Uniform() >= params_.false_closure_fraction) continue;
+    const Submap& s = *finished_[static_cast<std::size_t>(rng_.Uniform(0, finished_.size()))];
+    const int first = s.nodes.back() + 1, n = static_cast<int>(nodes_.size());
+    if (first >= n) continue;
+    const int node = first + static_cast<int>(rng_.Uniform(0, n - first));
+    const Pose2 relative(rng_.Uniform(-5, 5), rng_.Uniform(-5, 5), rng_.Uniform(-M_PI, M_PI));
+    closures_.push_back({node, s.index, s.origin_node, relative, 0.0});
+    injected_.push_back(true);
+  }
 }
 
 void GraphGridSlam::Finish() {
@@ -188,13 +211,14 @@ void GraphGridSlam::Finish() {
 // 99.7 % quantile (14.16): the loss has discounted it rather than the map following it.
 void GraphGridSlam::CountDisagreeing() {
   const Eigen::Matrix3d info = Information(params_.loop.sigma_xy_m, params_.loop.sigma_theta_rad);
-  int disagreeing = 0;
-  for (const LoopClosure& c : closures_) {
+  stats_.loop_closures_disagreeing = stats_.false_closures_disagreeing = 0;
+  for (std::size_t i = 0; i < closures_.size(); ++i) {
+    const LoopClosure& c = closures_[i];
     const Pose2 error = c.relative.Between(GlobalPose(c.origin_node).Between(GlobalPose(c.node)));
     const Eigen::Vector3d e = error.vector();
-    if (e.dot(info * e) > 14.16) ++disagreeing;
+    if (e.dot(info * e) <= 14.16) continue;
+    ++(injected_[i] ? stats_.false_closures_disagreeing : stats_.loop_closures_disagreeing);
   }
-  stats_.loop_closures_disagreeing = disagreeing;
 }
 
 Pose2 GraphGridSlam::CurrentPose() {
@@ -229,7 +253,9 @@ GridSlamStats GraphGridSlam::Stats() const {
   GraphSlamStats graph = stats_;
   graph.nodes = static_cast<int>(nodes_.size());
   graph.submaps = static_cast<int>(submaps_.all().size());
-  graph.loop_closures = static_cast<int>(closures_.size());
+  graph.false_closures_injected =
+      static_cast<int>(std::count(injected_.begin(), injected_.end(), true));
+  graph.loop_closures = static_cast<int>(closures_.size()) - graph.false_closures_injected;
   return {.updates = graph.nodes, .resamples = 0, .heading_drift_in_use_rad_per_m = 0.0,
           .graph = graph};
 }

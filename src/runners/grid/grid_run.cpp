@@ -48,6 +48,8 @@ nlohmann::json GraphStatsJson(const GraphSlamStats& g) {
           {"submaps", g.submaps},
           {"loop_closures", g.loop_closures},
           {"loop_closures_disagreeing", g.loop_closures_disagreeing},
+          {"false_closures_injected", g.false_closures_injected},
+          {"false_closures_disagreeing", g.false_closures_disagreeing},
           {"optimizations", g.optimizations},
           {"search_time_s", g.search_time_s},
           {"optimization_time_s", g.optimization_time_s},

@@ -47,15 +47,22 @@ std::string SpreadCell(const Spread& s) {
   return fmt::format("{:.4f} ({:.4f}–{:.4f})", s.mean, s.min, s.max);
 }
 
-// The completed runs of each log, in manifest order.
+// The run's log, with its back end when it is not the particle filter: a suite of both back ends
+// summarises each apart.
+std::string LogLabel(const SuiteRunRecord& r) {
+  return r.backend == "rbpf" ? r.log : r.log + " (" + r.backend + ")";
+}
+
+// The completed runs of each log and back end, in manifest order.
 std::vector<std::pair<std::string, std::vector<const SuiteRunRecord*>>> ByLog(
     const std::vector<SuiteRunRecord>& runs, std::vector<int>* failed) {
   std::vector<std::pair<std::string, std::vector<const SuiteRunRecord*>>> logs;
   for (const SuiteRunRecord& r : runs) {
+    const std::string label = LogLabel(r);
     auto it = std::find_if(logs.begin(), logs.end(),
-                           [&](const auto& l) { return l.first == r.log; });
+                           [&](const auto& l) { return l.first == label; });
     if (it == logs.end()) {
-      logs.push_back({r.log, {}});
+      logs.push_back({label, {}});
       failed->push_back(0);
       it = std::prev(logs.end());
     }
@@ -84,7 +91,8 @@ const std::vector<std::string>& SuiteSummaryColumns() {
 nlohmann::json SuiteSummaryJson(const std::vector<SuiteRunRecord>& runs) {
   nlohmann::json out = {{"runs", nlohmann::json::array()}, {"logs", nlohmann::json::array()}};
   for (const SuiteRunRecord& r : runs) {
-    out["runs"].push_back({{"log", r.log}, {"seed", r.seed}, {"status", Status(r)},
+    out["runs"].push_back({{"log", r.log}, {"backend", r.backend}, {"seed", r.seed},
+                           {"status", Status(r)},
                            {"exit_code", r.exit_code}, {"failure", r.failure},
                            {"wall_time_s", r.wall_time_s}, {"peak_rss_mib", r.peak_rss_mib},
                            {"metrics", r.metrics}});
@@ -94,6 +102,10 @@ nlohmann::json SuiteSummaryJson(const std::vector<SuiteRunRecord>& runs) {
   for (std::size_t i = 0; i < logs.size(); ++i) {
     nlohmann::json log = {{"log", logs[i].first}, {"completed", logs[i].second.size()},
                           {"failed", failed[i]}};
+    if (!logs[i].second.empty()) {
+      log["log"] = logs[i].second.front()->log;
+      log["backend"] = logs[i].second.front()->backend;
+    }
     for (const char* key : {"ate_rmse_m", "relations_trans_mean_m", "odometry_ate_rmse_m",
                             "odometry_relations_trans_mean_m", "wall_time_s", "peak_rss_mib"}) {
       const Spread s = RunSpreadOf(logs[i].second, key);
@@ -114,7 +126,7 @@ std::string SummaryCsv(const std::vector<SuiteRunRecord>& runs) {
   }
   csv += "\n";
   for (const SuiteRunRecord& r : runs) {
-    csv += fmt::format("{},{},{}", r.log, r.seed, Status(r));
+    csv += fmt::format("{},{},{}", LogLabel(r), r.seed, Status(r));
     for (const std::string& c : SuiteSummaryColumns()) {
       csv += ',';
       csv += Cell(Value(r, c), "{:.6g}");
@@ -152,7 +164,8 @@ std::string PerRunTable(const std::vector<SuiteRunRecord>& runs) {
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const SuiteRunRecord& r : runs) {
     md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                      r.log, r.seed, r.failure.empty() ? "ok" : "failed: " + r.failure,
+                      LogLabel(r), r.backend == "rbpf" ? fmt::format("{}", r.seed) : "–",
+                      r.failure.empty() ? "ok" : "failed: " + r.failure,
                       Cell(Value(r, "scans"), "{:.0f}"), Cell(Value(r, "ate_rmse_m")),
                       Cell(Value(r, "ate_max_m")), Cell(Value(r, "rpe_trans_mean_m")),
                       Cell(Value(r, "rpe_rot_mean_deg"), "{:.3f}"),

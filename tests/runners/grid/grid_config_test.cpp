@@ -79,7 +79,7 @@ TEST_F(GridConfigFile, MistakesNameTheFileLineAndKey) {
       {"usable_range: 30\n", "usable_range"},
       {"sampled_start_fraction: 1.5\n", "key 'sampled_start_fraction': must be at most 1"},
       {"heading_sweep_sigmas: -1\n", "key 'heading_sweep_sigmas': must be >= 0"},
-      {"backend: graph\n", "g.yaml:1: key 'backend': expected one of rbpf, got 'graph'"}};
+      {"backend: graphs\n", "g.yaml:1: key 'backend': expected one of rbpf, graph, got 'graphs'"}};
   for (const Case& c : cases) {
     const std::string message =
         testing::InputErrorOf([&] { LoadGridConfig(WriteFile("g.yaml", c.yaml)); });

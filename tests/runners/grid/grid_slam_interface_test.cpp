@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "common/synthetic_room.hpp"
-#include "slamkit/filters/grid/grid_slam_factory.hpp"
+#include "slamkit/filters/grid_slam_factory.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/runners/grid/grid_run.hpp"
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/rng.hpp"
 #include "slamkit/core/pose_graph.hpp"
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/filters/graph/loop_closure.hpp"
@@ -46,6 +47,11 @@ struct GraphGridSlamParams {
   int optimize_every_nodes = 100;
   int max_iterations = 30;  // Levenberg-Marquardt iterations per background optimisation
   int final_max_iterations = 200;
+  // A robustness study: for each closure the search accepts, with this probability a false one
+  // is added too, between a random node and a random earlier submap, its measurement drawn
+  // uniformly within ±5 m and ±π (seeded by `seed`). 0: none, the normal use.
+  double false_closure_fraction = 0.0;
+  std::uint64_t seed = 1;
 };
 
 // Laser SLAM as a pose graph (Hess et al., ICRA 2016, as Cartographer does it): a front end
@@ -93,6 +99,7 @@ class GraphGridSlam final : public GridSlam {
   void StartJob(bool final);
   PoseGraph BuildGraph(int nodes) const;
   void CountDisagreeing();
+  void InjectFalseClosures(int accepted);
 
   GraphGridSlamParams params_;
   SubmapStack submaps_;
@@ -108,6 +115,8 @@ class GraphGridSlam final : public GridSlam {
   PoseGraph graph_;  // after Finish
   mutable std::optional<OccupancyGrid> map_;
   GraphSlamStats stats_;
+  Rng rng_;
+  std::vector<bool> injected_;  // parallel to closures_: a false closure of the study
 };
 
 }  // namespace slamkit

@@ -39,6 +39,10 @@ struct LoopClosureParams {
   double max_angular_window_rad = 0.6;
   // A submap is searched when one of its nodes lies within (window + this) of the node.
   double max_node_distance_m = 4.0;
+  // The branch and bound uses the scan's points within this range (the refinement uses all): far
+  // returns (through windows and doors) are sparse and noisy, and the angular step, which must
+  // move the farthest point by no more than a cell, shrinks with the farthest point's range.
+  double max_point_range_m = 15.0;
   // Every k-th node is searched (1: every node).
   int node_stride = 2;
   ScanMatcherParams refinement = LoopRefinementParams();

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "slamkit/filters/grid/grid_slam_factory.hpp"
+#include "slamkit/filters/grid_slam_factory.hpp"
 #include "slamkit/io/param_table.hpp"
 
 namespace slamkit {

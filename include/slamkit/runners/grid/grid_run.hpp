@@ -8,7 +8,7 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/heading_drift.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
-#include "slamkit/filters/grid/grid_slam_factory.hpp"
+#include "slamkit/filters/grid_slam_factory.hpp"
 #include "slamkit/filters/grid_slam.hpp"
 #include "slamkit/io/carmen_reader.hpp"
 #include "slamkit/runners/common/log_scoring.hpp"

@@ -12,6 +12,7 @@ namespace slamkit {
 // One grid run of a suite (one log, one seed) as its driver saw it.
 struct SuiteRunRecord {
   std::string log;             // the manifest's name
+  std::string backend = "rbpf";  // the grid back end (GridBackendNames)
   std::uint64_t seed = 0;
   int exit_code = 0;           // of the run; 0 with a metrics.json is a completed run
   std::string failure;         // why it failed ("" when it completed)
@@ -23,8 +24,10 @@ struct SuiteRunRecord {
 // The columns of summary.csv, in order: what a suite compares across logs and seeds.
 const std::vector<std::string>& SuiteSummaryColumns();
 
-// summary.json: every run's record with its metrics, and per log the mean, min and max over its
-// completed seeds of ATE RMSE and of the relations' translation error (where present).
+// summary.json: every run's record with its metrics, and per log and back end the mean, min and
+// max over its completed seeds of ATE RMSE and of the relations' translation error (where
+// present). The tables name each run's back end when the runs have more than the particle
+// filter's.
 nlohmann::json SuiteSummaryJson(const std::vector<SuiteRunRecord>& runs);
 
 // Writes DIR/summary.csv (one row per run), DIR/summary.json and DIR/summary.md (a table per run

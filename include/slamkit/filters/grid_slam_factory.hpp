@@ -20,15 +20,15 @@ enum class GridBackend {
 const std::vector<std::string>& GridBackendNames();
 
 // Everything that makes a grid SLAM: which back end, and each back end's params. The laser and
-// map settings both back ends share (usable range, ray insertion, the grid, the initial pose)
-// are rbpf's; MakeGridSlam copies them into graph's.
+// map settings both back ends share (usable range, ray insertion, the grid, the initial pose,
+// the seed) are rbpf's; MakeGridSlam copies them into graph's.
 struct GridSlamConfig {
   GridBackend backend = GridBackend::kRbpf;
   RbpfGridSlamParams rbpf;
   GraphGridSlamParams graph;
 };
 
-// config.graph with the shared laser and map settings taken from config.rbpf.
+// config.graph with the shared laser, map and seed settings taken from config.rbpf.
 GraphGridSlamParams EffectiveGraphParams(const GridSlamConfig& config);
 
 // The filter `config` names. Throws std::invalid_argument for params the filter cannot take

@@ -1,4 +1,4 @@
-#include "slamkit/filters/grid/grid_slam_factory.hpp"
+#include "slamkit/filters/grid_slam_factory.hpp"
 
 #include "slamkit/maps/occupancy_grid.hpp"
 
@@ -16,6 +16,7 @@ GraphGridSlamParams EffectiveGraphParams(const GridSlamConfig& config) {
   p.no_return_ray_length_m = config.rbpf.no_return_ray_length_m;
   p.grid = config.rbpf.grid;
   p.initial_pose = config.rbpf.initial_pose;
+  p.seed = config.rbpf.seed;
   return p;
 }
 
