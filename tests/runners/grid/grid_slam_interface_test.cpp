@@ -35,7 +35,7 @@ class OdometryGridSlam final : public GridSlam {
   const OccupancyGrid& BestMap() const override { return map_; }
   GridSlamStats Stats() const override {
     return {.updates = static_cast<int>(path_.size()) / 2, .resamples = 7,
-            .heading_drift_in_use_rad_per_m = 0.25};
+            .heading_drift_in_use_rad_per_m = 0.25, .graph = std::nullopt};
   }
   void CheckOutputHealth() const override {
     if (!healthy_) ThrowNumericalError("OdometryGridSlam at output", "made to fail");

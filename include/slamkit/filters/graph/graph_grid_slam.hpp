@@ -36,11 +36,12 @@ struct GraphGridSlamParams {
   double node_min_rotation_rad = 0.1;
   SubmapParams submaps;
   // The measurement noise of the front end's motion between consecutive nodes.
-  double local_sigma_xy_m = 0.02;
-  double local_sigma_theta_rad = 0.005;
+  double local_sigma_xy_m = 0.01;
+  double local_sigma_theta_rad = 0.0025;
   LoopClosureParams loop;
-  // The loss of loop closures in the optimisation, so a false one cannot tear the map.
-  RobustLossParams loop_loss{.kind = RobustLossKind::kHuber, .scale = 3.0};
+  // The loss of loop closures in the optimisation, so a false one cannot tear the map: DCS
+  // (Agarwal et al. 2013), a closure costing at most 3Φ; Φ = 9 is a 3σ residual.
+  RobustLossParams loop_loss{.kind = RobustLossKind::kDcs, .scale = 9.0};
   // The loop-closure search and the optimisation run in a background thread on the graph as it
   // was every this many nodes; their result is taken in at the next such point (so a seed and a
   // log fix the output whatever the timing).
