@@ -68,10 +68,16 @@ bool GraphGridSlam::ProcessScan(const LaserScan& scan) {
     scans_.push_back({scan.t_s, 0, Pose2()});
     return true;
   }
-  const Pose2 guess = last_local_.Compose(last_odometry_.Between(scan.odometry));
+  const Pose2 step = last_odometry_.Between(scan.odometry);
+  const Pose2 guess = last_local_.Compose(step);
   last_odometry_ = scan.odometry;
-  const MatchResult match =
-      MatchScan(submaps_.MatchingSubmap()->grid, points, guess, params_.matcher);
+  ScanMatcherParams matcher = params_.matcher;
+  if (step.translation().norm() >= params_.sparse_step_m ||
+      std::abs(step.theta()) >= params_.sparse_step_rad) {
+    matcher.heading_sweep_rad = params_.sparse_heading_sweep_rad;
+    matcher.widen_below_score_fraction = params_.sparse_widen_below_score_fraction;
+  }
+  const MatchResult match = MatchScan(submaps_.MatchingSubmap()->grid, points, guess, matcher);
   last_local_ = match.accepted ? match.pose : guess;
   const Pose2 moved = nodes_.back().local.Between(last_local_);
   const bool node = moved.translation().norm() >= params_.node_min_translation_m ||

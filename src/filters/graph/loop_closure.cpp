@@ -111,6 +111,10 @@ std::vector<LoopClosure> SearchLoopClosures(const LoopSearchInput& in,
       if (node <= s.nodes.back()) continue;  // in the submap, or before it ended
       const double driven = drift[k] + in.driven_m[static_cast<std::size_t>(node)] - now;
       const CorrelativeWindow window = LoopWindow(params, driven);
+      if (params.thin_wide_windows && params.base_linear_window_m > 0.0) {
+        const int every = std::max(1, static_cast<int>(window.linear_m / params.base_linear_window_m));
+        if ((node / params.node_stride) % every != 0) continue;
+      }
       const Pose2 local =
           s.origin.Compose(origin_global.Between(in.global[static_cast<std::size_t>(node)]));
       if (SubmapWithinReach(s, local, window, params)) {

@@ -30,6 +30,16 @@ struct GraphGridSlamParams {
   // The front end: each scan is matched against the matching submap from the previous scan's
   // pose moved by odometry; an unaccepted match keeps the odometry guess.
   ScanMatcherParams matcher;
+  // A scan this far or further from the one before (by odometry) is sparse: between such scans
+  // (a scan a metre, as the CARMEN suite's logs have) odometry can misjudge a turn by more than
+  // the climb recovers, and one front end, unlike a particle set, has no other hypothesis. Its
+  // match then first sweeps the heading over ± sparse_heading_sweep_rad and retries a poor
+  // climb from other headings (ScanMatcherParams' heading_sweep_rad and
+  // widen_below_score_fraction). Dense scans keep `matcher` as it is.
+  double sparse_step_m = 0.5;
+  double sparse_step_rad = 0.25;
+  double sparse_heading_sweep_rad = 0.25;
+  double sparse_widen_below_score_fraction = 0.5;
   // A scan becomes a graph node (inserted into the submaps, searched for loop closures) once the
   // front end has moved this far from the last node; the others only get a pose.
   double node_min_translation_m = 0.2;

@@ -45,6 +45,10 @@ struct LoopClosureParams {
   double max_point_range_m = 15.0;
   // Every k-th node is searched (1: every node).
   int node_stride = 2;
+  // A search over a wider window costs more (its area and angle) and is needed less often (a
+  // closure at the end of a long loop is found from any of several nodes): a pair whose linear
+  // window is k times the base one is searched on every k-th searched node only (true: so).
+  bool thin_wide_windows = true;
   ScanMatcherParams refinement = LoopRefinementParams();
   // The closure's measurement noise: its information is diag(1/σ_xy², 1/σ_xy², 1/σ_θ²).
   double sigma_xy_m = 0.05;
