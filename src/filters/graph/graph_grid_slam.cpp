@@ -39,10 +39,7 @@ struct GraphGridSlam::JobResult {
 
 GraphGridSlam::GraphGridSlam(const GraphGridSlamParams& params)
     : params_(params),
-      submaps_(params.submaps, params.grid,
-               {.usable_range_m = params.usable_range_m,
-                .misses_spare_scan_hits = params.misses_spare_scan_hits,
-                .no_return_ray_length_m = params.no_return_ray_length_m}),
+      submaps_(params.submaps, params.grid, Insertion()),
       rng_(params.seed) {
   if (params.optimize_every_nodes < 1 || params.loop.node_stride < 1) {
     throw std::invalid_argument("graph: optimize_every_nodes and loop.node_stride must be >= 1");
@@ -165,9 +162,8 @@ void GraphGridSlam::StartJob(bool final) {
     result->closures = SearchLoopClosures(input, loop);
     result->search_time_s = Seconds(start);
     for (const LoopClosure& c : result->closures) graph.edges.push_back(ClosureEdge(c, loop));
-    const auto optimize_start = std::chrono::steady_clock::now();
     const PoseGraphSolution solution = OptimizePoseGraph(graph, input.global, optimizer);
-    result->optimization_time_s = Seconds(optimize_start);
+    result->optimization_time_s = solution.time_s;
     result->poses = solution.poses;
     result->chi2 = solution.chi2;
     return result;
@@ -244,9 +240,7 @@ Trajectory GraphGridSlam::BestTrajectory() {
 const OccupancyGrid& GraphGridSlam::BestMap() const {
   if (!map_) {
     map_.emplace(params_.grid);
-    const ScanInsertionParams insertion{.usable_range_m = params_.usable_range_m,
-                                        .misses_spare_scan_hits = params_.misses_spare_scan_hits,
-                                        .no_return_ray_length_m = params_.no_return_ray_length_m};
+    const ScanInsertionParams insertion = Insertion();
     for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
       const LaserScan& scan = *nodes_[static_cast<std::size_t>(i)].scan;
       InsertScan(*map_, GlobalPose(i).Compose(scan.laser_offset), scan, insertion);

@@ -110,6 +110,11 @@ class GraphGridSlam final : public GridSlam {
   void StartJob(bool final);
   PoseGraph BuildGraph(int nodes) const;
   void CountDisagreeing();
+  ScanInsertionParams Insertion() const {
+    return {.usable_range_m = params_.usable_range_m,
+            .misses_spare_scan_hits = params_.misses_spare_scan_hits,
+            .no_return_ray_length_m = params_.no_return_ray_length_m};
+  }
   void InjectFalseClosures(int accepted);
 
   GraphGridSlamParams params_;
@@ -120,7 +125,6 @@ class GraphGridSlam final : public GridSlam {
   std::vector<LoopClosure> closures_;
   std::vector<Pose2> optimized_;  // global poses of the first optimized_.size() nodes
   int searched_nodes_ = 0;        // nodes handed to a search so far
-  int last_closure_node_ = -1;    // the latest node with a closure taken in
   std::future<std::unique_ptr<JobResult>> job_;
   Pose2 last_local_, last_odometry_;
   PoseGraph graph_;  // after Finish
