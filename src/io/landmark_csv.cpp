@@ -16,7 +16,7 @@
 namespace slamkit {
 namespace {
 
-constexpr const char* kFieldNames[] = {"id", "x_m", "y_m"};
+constexpr const char* kLandmarkCsvFields[] = {"id", "x_m", "y_m"};
 
 std::string_view Trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
@@ -44,7 +44,7 @@ class LineParser {
     throw InputError(where_ + ": " + reason);
   }
   [[noreturn]] void FailField(int field, std::string_view reason, std::string_view text) const {
-    Fail(fmt::format("field '{}': {} ('{}')", kFieldNames[field], reason, text));
+    Fail(fmt::format("field '{}': {} ('{}')", kLandmarkCsvFields[field], reason, text));
   }
 
   LandmarkId Id(std::string_view text) const {
@@ -90,10 +90,10 @@ LandmarkWorld ReadLandmarkCsv(const std::filesystem::path& path) {
     const LineParser parser(fmt::format("{}:{}", path.string(), line_number));
     if (fields.size() > 3) parser.Fail(fmt::format("expected 3 fields, got {}", fields.size()));
     if (fields.size() < 3) {
-      parser.Fail(fmt::format("field '{}': missing", kFieldNames[fields.size()]));
+      parser.Fail(fmt::format("field '{}': missing", kLandmarkCsvFields[fields.size()]));
     }
     for (int f = 0; f < 3; ++f) {
-      if (fields[f].empty()) parser.Fail(fmt::format("field '{}': empty", kFieldNames[f]));
+      if (fields[f].empty()) parser.Fail(fmt::format("field '{}': empty", kLandmarkCsvFields[f]));
     }
     Landmark landmark;
     landmark.id = parser.Id(fields[0]);

@@ -10,17 +10,17 @@
 namespace slamkit {
 namespace {
 
-constexpr const char* kFieldNames[] = {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"};
+constexpr const char* kRelationFields[] = {"t1", "t2", "x", "y", "z", "roll", "pitch", "yaw"};
 
 PoseRelation ParseRelation(const text::Fields& fields) {
-  fields.Expect(std::size(kFieldNames), kFieldNames);
-  double values[std::size(kFieldNames)];
-  for (std::size_t i = 0; i < std::size(kFieldNames); ++i) {
-    values[i] = fields.Number(i, {kFieldNames[i]});
+  fields.Expect(std::size(kRelationFields), kRelationFields);
+  double values[std::size(kRelationFields)];
+  for (std::size_t i = 0; i < std::size(kRelationFields); ++i) {
+    values[i] = fields.Number(i, {kRelationFields[i]});
   }
   for (std::size_t i : {4, 5, 6}) {
     if (std::abs(values[i]) > text::kOutOfPlaneTolerance) {
-      fields.Fail({kFieldNames[i]},
+      fields.Fail({kRelationFields[i]},
                   fmt::format("must be 0 in a planar relation ('{}')", fields.Text(i)));
     }
   }

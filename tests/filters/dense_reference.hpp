@@ -15,12 +15,15 @@ struct DenseEkf {
   std::vector<int> angles;  // state indices wrapped after every update
 
   void Update(const Eigen::VectorXd& nu, const Eigen::MatrixXd& H, const Eigen::MatrixXd& R) {
-    const Eigen::MatrixXd S = H * P * H.transpose() + R;
-    const Eigen::MatrixXd K = P * H.transpose() * S.inverse();
+    const Eigen::MatrixXd PHt = P * H.transpose();
+    const Eigen::MatrixXd S = H * PHt + R;
+    const Eigen::MatrixXd K = PHt * S.inverse();
     x += K * nu;
     for (const int i : angles) x[i] = WrapAngle(x[i]);
-    const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(x.size(), x.size()) - K * H;
-    P = I_KH * P * I_KH.transpose() + K * R * K.transpose();
+    // Joseph form (I − KH) P (I − KH)ᵀ + K R Kᵀ multiplied out (P symmetric, HPHᵀ + R = S), so
+    // it costs O(n² d), not O(n³): the sanitizer build runs this test code at -O0.
+    const Eigen::MatrixXd KPHt_t = K * PHt.transpose();
+    P += K * S * K.transpose() - KPHt_t - KPHt_t.transpose();
   }
 
   // Appends b = g(x, z) with J_b_x (d × n) and J_b_z.

@@ -13,7 +13,7 @@
 namespace slamkit {
 namespace {
 
-const BlockKind kPointKind{2, {}, false};
+const BlockKind kCooperativePointKind{2, {}, false};
 
 void CheckScan(const FleetScan& scan, int vehicles) {
   if (scan.vehicle < 0 || scan.vehicle >= vehicles || !std::isfinite(scan.t_s)) {
@@ -47,7 +47,7 @@ CooperativeEkfSlam::CooperativeEkfSlam(const CooperativeEkfSlamParams& params, i
       associator_(associator ? std::move(associator) : MakeAssociator(params.ekf)),
       selection_(selection ? std::move(selection) : std::make_unique<SelectAll>()),
       ekf_(0),
-      point_kind_(ekf_.RegisterKind(kPointKind)),
+      point_kind_(ekf_.RegisterKind(kCooperativePointKind)),
       point_model_(*sensor_, point_kind_, params.ekf.association_margin_m),
       fej_models_(std::max(vehicles, 0), FirstEstimatesPointModel(*sensor_)),
       block_of_(vehicles, -1),
@@ -72,7 +72,7 @@ void CooperativeEkfSlam::Reset(std::span<const Pose2> start_poses,
   const int tracked = static_cast<int>(std::count_if(block_of_.begin(), block_of_.end(),
                                                      [](int b) { return b >= 0; }));
   ekf_ = BlockEkf(3 * tracked + 2 * std::max(params_.ekf.initial_landmark_capacity, 1));
-  point_kind_ = ekf_.RegisterKind(kPointKind);
+  point_kind_ = ekf_.RegisterKind(kCooperativePointKind);
   for (int v = 0; v < vehicles_; ++v) {
     if (Tracks(v)) ekf_.AddBlock(kPoseKind, start_poses[v].vector(), pose_cov);
     fej_models_[v].Clear();

@@ -14,7 +14,7 @@
 
 namespace slamkit::internal {
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMaxTruthGapS = 0.5;
 }  // namespace
 
@@ -54,7 +54,7 @@ void Summarise(CoopVehicleTrace& trace, const LandmarkWorld& world,
     // A pose known exactly in some direction (the known start, dead reckoning) has no NEES.
     const Eigen::Vector3d eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues();
     const bool definite = eigenvalues.minCoeff() > 1e-12 * eigenvalues.maxCoeff();
-    trace.nees.push_back(definite ? Nees(e, C) : kNaN);
+    trace.nees.push_back(definite ? Nees(e, C) : kNoValue);
     if (definite) {
       nees_sum += trace.nees.back();
       ++defined;
@@ -65,7 +65,7 @@ void Summarise(CoopVehicleTrace& trace, const LandmarkWorld& world,
   const PoseRmse rmse = ComputePoseRmse(errors);
   trace.position_rmse_m = rmse.position_m;
   trace.heading_rmse_rad = rmse.heading_rad;
-  trace.mean_nees = defined > 0 ? nees_sum / defined : kNaN;
+  trace.mean_nees = defined > 0 ? nees_sum / defined : kNoValue;
   std::unordered_map<LandmarkId, Eigen::Vector2d> truth;
   for (const Landmark& l : world.landmarks) truth.emplace(l.id, l.position_m);
   std::vector<Eigen::Vector2d> from, to;
