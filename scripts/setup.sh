@@ -43,7 +43,8 @@ case "$flavour" in
   asan)
     env_args=(CC=clang CXX=clang++)
     args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_BUILD_FUZZ=ON
-          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF -DSLAMKIT_BUILD_APPS=OFF) ;;
+          -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF -DSLAMKIT_BUILD_APPS=OFF
+          -DSLAMKIT_TEST_PER_PROGRAM=ON) ;;
   *) echo "setup: unknown build '$flavour' (release|asan)" >&2; exit 2 ;;
 esac
 build=build/$flavour
