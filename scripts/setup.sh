@@ -6,7 +6,8 @@
 #   release  GCC, -O3: the library, the `slamkit` program, the tests and the benchmarks.
 #   asan     clang with AddressSanitizer and UndefinedBehaviorSanitizer at -O1 (asserts and
 #            Eigen's index checks on; test code at -O0): the tests not labelled `slow` or
-#            needing the program (test.sh runs those in Release only) and the libFuzzer
+#            needing the program (test.sh runs those in Release only), each test program
+#            registered with ctest as one test (SLAMKIT_TEST_PER_PROGRAM), and the libFuzzer
 #            harnesses of the input readers (fuzz/, scripts/fuzz.sh), all in one tree.
 set -euo pipefail
 cd "$(dirname "$0")/.."
