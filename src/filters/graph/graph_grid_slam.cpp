@@ -69,13 +69,17 @@ bool GraphGridSlam::ProcessScan(const LaserScan& scan) {
   const Pose2 guess = last_local_.Compose(step);
   last_odometry_ = scan.odometry;
   ScanMatcherParams matcher = params_.matcher;
-  if (step.translation().norm() >= params_.sparse_step_m ||
-      std::abs(step.theta()) >= params_.sparse_step_rad) {
+  const bool sparse = step.translation().norm() >= params_.sparse_step_m ||
+                      std::abs(step.theta()) >= params_.sparse_step_rad;
+  if (sparse) {
     matcher.heading_sweep_rad = params_.sparse_heading_sweep_rad;
     matcher.widen_below_score_fraction = params_.sparse_widen_below_score_fraction;
   }
   const MatchResult match = MatchScan(submaps_.MatchingSubmap()->grid, points, guess, matcher);
-  last_local_ = match.accepted ? match.pose : guess;
+  const bool slid = !sparse && params_.dense_max_correction_m > 0.0 &&
+                    (match.pose.translation() - guess.translation()).norm() >
+                        params_.dense_max_correction_m;
+  last_local_ = match.accepted && !slid ? match.pose : guess;
   const Pose2 moved = nodes_.back().local.Between(last_local_);
   const bool node = moved.translation().norm() >= params_.node_min_translation_m ||
                     std::abs(moved.theta()) >= params_.node_min_rotation_rad;

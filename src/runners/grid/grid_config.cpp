@@ -203,6 +203,8 @@ void AddGraph(GraphGridSlamParams& g, ParamTable& t) {
              "a sparse scan's match sweeps its heading over +- this ..."),
       Number(s, "sparse_widen_below_score_fraction", &g.sparse_widen_below_score_fraction,
              kNonNeg, "", "... and retries a climb scoring below this times its beams"),
+      Number(s, "dense_max_correction_m", &g.dense_max_correction_m, kNonNeg, "m",
+             "a dense scan's match moving the odometry guess further keeps the guess (0: off)"),
       Number(s, "local_sigma_xy_m", &g.local_sigma_xy_m, kPos, "m",
              "noise of the front end's motion between consecutive nodes"),
       Number(s, "local_sigma_theta_rad", &g.local_sigma_theta_rad, kPos, "rad", "... in heading"),

@@ -166,6 +166,32 @@ TEST(GraphGridSlam, ClosesLapsWhereOdometryDriftsAndIsDeterministic) {
   for (std::size_t k = 0; k < path.size(); ++k) EXPECT_EQ(again[k].pose.vector(), path[k].pose.vector());
 }
 
+// dense_max_correction_m: a dense scan's match that moves the odometry guess further than the
+// limit is not taken. Below the odometry's error per step (7.5 mm) every match is refused and the
+// front end is the odometry; above it the matches hold the laps (no loop closures in either run).
+TEST(GraphGridSlam, DenseMatchMovingTheGuessTooFarKeepsTheOdometry) {
+  std::vector<Pose2> truth;
+  const std::vector<LaserScan> log = LapsLog(&truth);
+  std::vector<Pose2> odometry;
+  for (const LaserScan& scan : log) odometry.push_back(scan.odometry);
+  GraphGridSlamParams params = SmallGraph();
+  params.loop.matcher.min_score = 1.0;  // no closures: the front end alone
+  const auto poses = [&](double limit_m) {
+    params.dense_max_correction_m = limit_m;
+    GridSlamStats stats;
+    const Trajectory path = RunGraph(log, params, 1, &stats);
+    EXPECT_EQ(stats.graph->loop_closures, 0);
+    std::vector<Pose2> out;
+    for (const auto& p : path) out.push_back(p.pose);
+    return out;
+  };
+  const std::vector<Pose2> refused = poses(1e-4);
+  EXPECT_LT(MaxError(odometry, refused), 1e-9);
+  const std::vector<Pose2> taken = poses(0.2);
+  EXPECT_GT(MaxError(odometry, taken), 1.0);
+  EXPECT_LT(MaxError(truth, taken), 0.3);  // 0.15 m: the front end alone drifts a little
+}
+
 // The RMS position error of `poses` against `truth`, both relative to their first pose.
 double RmsError(const std::vector<Pose2>& truth, const std::vector<Pose2>& poses) {
   double sum = 0.0;

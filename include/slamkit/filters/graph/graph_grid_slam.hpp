@@ -40,6 +40,10 @@ struct GraphGridSlamParams {
   double sparse_step_rad = 0.25;
   double sparse_heading_sweep_rad = 0.25;
   double sparse_widen_below_score_fraction = 0.5;
+  // A dense scan's match that moves the odometry guess further than this is taken as a slide
+  // along a corridor or onto a look-alike wall, not a correction, and the guess is kept: between
+  // scans a few centimetres apart odometry is good to a few millimetres. 0: no such limit.
+  double dense_max_correction_m = 0.2;
   // A scan becomes a graph node (inserted into the submaps, searched for loop closures) once the
   // front end has moved this far from the last node; the others only get a pose.
   double node_min_translation_m = 0.2;
