@@ -66,8 +66,22 @@ bool GraphGridSlam::ProcessScan(const LaserScan& scan) {
     return true;
   }
   const Pose2 step = last_odometry_.Between(scan.odometry);
-  const Pose2 guess = last_local_.Compose(step);
   last_odometry_ = scan.odometry;
+  last_local_ = MatchFrontEnd(points, step);
+  const Pose2 moved = nodes_.back().local.Between(last_local_);
+  const bool node = moved.translation().norm() >= params_.node_min_translation_m ||
+                    std::abs(moved.theta()) >= params_.node_min_rotation_rad;
+  if (node) AddNode(scan, last_local_, points);
+  const int anchor = static_cast<int>(nodes_.size()) - 1;
+  scans_.push_back({scan.t_s, anchor, nodes_.back().local.Between(last_local_)});
+  return node;
+}
+
+// The front end's pose of a scan `step` (by odometry) after the last: its match against the
+// matching submap from the odometry guess, or the guess where the match is not accepted or, for
+// a dense scan, moves the guess further than dense_max_correction_m (a slide, not a correction).
+Pose2 GraphGridSlam::MatchFrontEnd(const ScanPoints& points, const Pose2& step) const {
+  const Pose2 guess = last_local_.Compose(step);
   ScanMatcherParams matcher = params_.matcher;
   const bool sparse = step.translation().norm() >= params_.sparse_step_m ||
                       std::abs(step.theta()) >= params_.sparse_step_rad;
@@ -79,14 +93,7 @@ bool GraphGridSlam::ProcessScan(const LaserScan& scan) {
   const bool slid = !sparse && params_.dense_max_correction_m > 0.0 &&
                     (match.pose.translation() - guess.translation()).norm() >
                         params_.dense_max_correction_m;
-  last_local_ = match.accepted && !slid ? match.pose : guess;
-  const Pose2 moved = nodes_.back().local.Between(last_local_);
-  const bool node = moved.translation().norm() >= params_.node_min_translation_m ||
-                    std::abs(moved.theta()) >= params_.node_min_rotation_rad;
-  if (node) AddNode(scan, last_local_, points);
-  const int anchor = static_cast<int>(nodes_.size()) - 1;
-  scans_.push_back({scan.t_s, anchor, nodes_.back().local.Between(last_local_)});
-  return node;
+  return match.accepted && !slid ? match.pose : guess;
 }
 
 void GraphGridSlam::AddNode(const LaserScan& scan, const Pose2& local, const ScanPoints& points) {
