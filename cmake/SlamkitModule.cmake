@@ -82,6 +82,29 @@ function(slamkit_module name)
   set_property(GLOBAL APPEND PROPERTY SLAMKIT_INSTALLED_MODULES ${name})
 endfunction()
 
+# One ctest test per test program (SLAMKIT_TEST_PER_PROGRAM), the programs with the most sources
+# first (ctest starts the costliest first; a fresh tree has no timings yet) so the longest does
+# not start last. A program of 16 sources or more runs as two halves (gtest's own sharding,
+# which splits its cases deterministically), so that one program does not keep a core busy
+# after the others are done.
+function(slamkit_add_test_program name labels sources)
+  list(LENGTH sources cost)
+  set(shards 1)
+  if(cost GREATER_EQUAL 16)
+    set(shards 2)
+  endif()
+  math(EXPR last "${shards} - 1")
+  foreach(shard RANGE ${last})
+    set(test ${name})
+    if(shards GREATER 1)
+      set(test ${name}_${shard})
+    endif()
+    add_test(NAME ${test} COMMAND ${name} --gtest_brief=1)
+    set_tests_properties(${test} PROPERTIES LABELS "${labels}" COST ${cost}
+      ENVIRONMENT "GTEST_TOTAL_SHARDS=${shards};GTEST_SHARD_INDEX=${shard}")
+  endforeach()
+endfunction()
+
 # slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...] [NEEDS_CLI]): one gtest binary registered
 # with ctest. The tests labelled `slow` or `release` are what scripts/test.sh builds and runs in
 # the Release tree (target slamkit_release_tests, ctest -L 'slow|release'); every test but the
@@ -132,13 +155,13 @@ function(slamkit_test)
     # Test code at -O0 in the sanitizer build (the library stays at -O1, where the tests spend
     # their time): it compiles in about two thirds of the time.
     target_compile_options(${name} PRIVATE -O0)
+  elseif(ARG_NEEDS_CLI)
+    # These run the program and read its files: their own code need not be fast, and at -O1
+    # it compiles in two thirds of -O3's time.
+    target_compile_options(${name} PRIVATE -O1)
   endif()
   if(SLAMKIT_TEST_PER_PROGRAM)
-    add_test(NAME ${name} COMMAND ${name} --gtest_brief=1)
-    # The programs with the most sources first (ctest starts the costliest first; a fresh tree
-    # has no timings yet), so the longest does not start last.
-    list(LENGTH ARG_SOURCES cost)
-    set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}" COST ${cost})
+    slamkit_add_test_program(${name} "${ARG_LABELS}" "${ARG_SOURCES}")
   else()
     include(GoogleTest)
     gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")

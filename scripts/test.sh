@@ -32,9 +32,9 @@ step "sanitizer build"
 (cd build/asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j "$(nproc)" -LE slow)
 step "sanitizer tests"
-# 5 s per harness (thousands of inputs each), as many at once as there are cores: long enough to
+# 3 s per harness (thousands of inputs each), as many at once as there are cores: long enough to
 # catch a reader change that crashes on its seed corpus or on simple mutations of it; real
 # campaigns are scripts/fuzz.sh READER 600. Each run prints its own result line; xargs fails when
 # any of them does.
-ls fuzz/corpus | xargs -P "$(nproc)" -I{} scripts/fuzz.sh {} 5  # a corpus folder per harness
+ls fuzz/corpus | xargs -P "$(nproc)" -I{} scripts/fuzz.sh {} 3  # a corpus folder per harness
 step "fuzz smoke"
