@@ -4,8 +4,9 @@
 #include <cstdint>
 
 #include "carmen_common.hpp"
+#include "harnesses.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzCarmen(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   ReadBothWays(WriteFile("log.clf", AsText(data, size)));
   return 0;

@@ -4,10 +4,11 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzFloorPlan(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   try {
     const slamkit::Walls walls =

@@ -4,10 +4,11 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/isam_reader.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzIsam(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   try {
     const slamkit::IsamLog log = slamkit::ReadIsamLog(WriteFile("log.isam", AsText(data, size)));

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/mrclam_reader.hpp"
 
@@ -50,7 +51,7 @@ std::filesystem::path WriteFolder(std::string_view text) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzMrclam(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   try {
     const slamkit::MrclamDataset dataset =

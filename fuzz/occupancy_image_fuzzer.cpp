@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/map_reader.hpp"
 
@@ -18,7 +19,7 @@ constexpr std::string_view kDefaultYaml = "image: map.pgm\nresolution: 0.05\nori
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzOccupancyImage(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   const std::string_view input = AsText(data, size);
   const std::size_t split = input.find(kSeparator);

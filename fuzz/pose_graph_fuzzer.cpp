@@ -5,10 +5,11 @@
 #include <unordered_set>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/pose_graph_io.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzPoseGraph(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   try {
     const slamkit::PoseGraph graph =

@@ -4,10 +4,11 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzRelations(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   try {
     const auto relations = slamkit::ReadRelations(WriteFile("log.relations", AsText(data, size)));

@@ -7,10 +7,11 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzScenario(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   static const bool csv_written = (WriteFile("landmarks.csv", "id,x_m,y_m\n0,1,2\n1,3,-4\n"), true);
   (void)csv_written;

@@ -7,10 +7,11 @@
 #include <string>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/runners/grid/suite_manifest.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzSuiteManifest(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   static const bool files = [] {
     WriteFile("a.log", "FLASER 3 1 2 3 0 0 0 0 0 0 1 host 1\n");

@@ -5,10 +5,11 @@
 #include <cstdint>
 
 #include "fuzz_input.hpp"
+#include "harnesses.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+int slamkit::fuzz::FuzzTrajectory(const std::uint8_t* data, std::size_t size) {
   using namespace slamkit::fuzz;
   try {
     const auto poses = slamkit::ReadTrajectory(WriteFile("poses.txt", AsText(data, size)));
