@@ -34,18 +34,21 @@ CorrelativeMatcher::CorrelativeMatcher(const OccupancyGrid& map,
   height_ = empty ? 1 : map.max_cell().y - map.min_cell().y + 1 + margin;
   levels_.resize(static_cast<std::size_t>(params.branch_and_bound_depth));
   const std::size_t n = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
-  levels_[0].value.assign(n, 0.0f);
+  levels_[0].value.assign(n, 0);
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       const CellIndex c{x0_ + x, y0_ + y};
-      if (map.IsKnown(c)) levels_[0].value[std::size_t(y) * width_ + x] = float(map.Probability(c));
+      if (map.IsKnown(c)) {
+        levels_[0].value[std::size_t(y) * width_ + x] =
+            static_cast<std::uint16_t>(std::lround(map.Probability(c) * kProbabilitySteps));
+      }
     }
   }
   for (std::size_t h = 1; h < levels_.size(); ++h) {
     const int s = 1 << (h - 1);
-    const std::vector<float>& below = levels_[h - 1].value;
-    const auto at = [&](int x, int y) {
-      return x < width_ && y < height_ ? below[std::size_t(y) * width_ + x] : 0.0f;
+    const std::vector<std::uint16_t>& below = levels_[h - 1].value;
+    const auto at = [&](int x, int y) -> std::uint16_t {
+      return x < width_ && y < height_ ? below[std::size_t(y) * width_ + x] : 0;
     };
     levels_[h].value.resize(n);
     for (int y = 0; y < height_; ++y) {
@@ -91,14 +94,14 @@ CorrelativeMatcher::Query CorrelativeMatcher::MakeQuery(
 
 double CorrelativeMatcher::Score(Query& q, int rotation, int dx, int dy, int level) const {
   ++q.scored;
-  const std::vector<float>& grid = levels_[static_cast<std::size_t>(level)].value;
+  const std::vector<std::uint16_t>& grid = levels_[static_cast<std::size_t>(level)].value;
   const Rotated& r = q.rotations[static_cast<std::size_t>(rotation)];
-  double sum = 0.0;
+  std::uint64_t sum = 0;
   for (const Eigen::Vector2i& c : r.cells) {
     const int x = c.x() + dx - x0_, y = c.y() + dy - y0_;
     if (x >= 0 && y >= 0 && x < width_ && y < height_) sum += grid[std::size_t(y) * width_ + x];
   }
-  return sum / static_cast<double>(r.cells.size());
+  return static_cast<double>(sum) / (static_cast<double>(r.cells.size()) * kProbabilitySteps);
 }
 
 std::optional<CorrelativeMatch> CorrelativeMatcher::Result(const Query& q, const Candidate& best,

@@ -67,6 +67,14 @@ TEST(CorrelativeMatcher, BranchAndBoundEqualsTheExhaustiveSearch) {
     ASSERT_TRUE(full.has_value() && fast.has_value()) << trial;
     EXPECT_EQ(fast->score, full->score) << trial;
     EXPECT_EQ(fast->pose.vector(), full->pose.vector()) << trial;
+    // The score is the mean occupancy of the map at the points' cells (each to 1/65535: the
+    // matcher holds probabilities in 16 bits).
+    double mean = 0.0;
+    for (const Eigen::Vector2d& p : scan) {
+      const CellIndex c = map.WorldToCell(full->pose.TransformFrom(p));
+      mean += map.IsKnown(c) ? map.Probability(c) : 0.0;
+    }
+    EXPECT_NEAR(full->score, mean / double(scan.size()), 1.0 / 65535) << trial;
     EXPECT_GT(full->score, 0.7) << trial;  // the angle grid misses the true heading slightly
     EXPECT_LT((full->pose.translation() - truth.translation()).norm(), 2.0 * kRes) << trial;
     EXPECT_LT(std::abs(full->pose.theta() - truth.theta()), 0.02) << trial;

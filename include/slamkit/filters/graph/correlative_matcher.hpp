@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -57,8 +58,12 @@ class CorrelativeMatcher {
       const std::optional<CorrelativeWindow>& window = {}, long* scored = nullptr) const;
 
  private:
-  struct Grid {  // one level: each cell the max of the 2^level × 2^level cells from it
-    std::vector<float> value;
+  // One level: each cell the max of the 2^level × 2^level cells from it, as a probability in
+  // steps of 1/kProbabilitySteps (16 bits rather than a float: the levels are the largest thing
+  // a graph run holds while it searches, one set per submap searched at once).
+  static constexpr int kProbabilitySteps = 65535;
+  struct Grid {
+    std::vector<std::uint16_t> value;
   };
   struct Rotated {  // the points turned by one angle, as cell offsets from the initial pose
     double theta = 0.0;
