@@ -105,7 +105,7 @@ function(slamkit_add_test_program name labels sources)
   endforeach()
 endfunction()
 
-# slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...] [NEEDS_CLI] [OPTIMISED]): one gtest binary registered
+# slamkit_test(NAME SOURCES ... DEPS ... [LABELS ...] [NEEDS_CLI]): one gtest binary registered
 # with ctest. The tests labelled `slow` or `release` are what scripts/test.sh builds and runs in
 # the Release tree (target slamkit_release_tests, ctest -L 'slow|release'); every test but the
 # slow ones runs in the sanitizer tree. Tests that run the `slamkit` program (NEEDS_CLI, and
@@ -116,7 +116,7 @@ endfunction()
 # SLAMKIT_BUILD_REPORT=OFF). NAME is then an empty INTERFACE library, so the caller's own
 # follow-up lines (add_dependencies(NAME slamkit)) still configure.
 function(slamkit_test)
-  cmake_parse_arguments(ARG "NEEDS_CLI;OPTIMISED" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "NEEDS_CLI" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
   set(name ${ARG_NAME})
   if(CMAKE_CURRENT_SOURCE_DIR STREQUAL "${PROJECT_SOURCE_DIR}/tests/apps")
     set(ARG_NEEDS_CLI TRUE)
@@ -155,10 +155,9 @@ function(slamkit_test)
     # Test code at -O0 in the sanitizer build (the library stays at -O1, where the tests spend
     # their time): it compiles in about two thirds of the time.
     target_compile_options(${name} PRIVATE -O0)
-  elseif(NOT ARG_OPTIMISED)
-    # Test code at -O1 in an optimised build: the tests spend their time in the libraries (or,
-    # NEEDS_CLI, in the program) at the build's level, and a test unit compiles at -O1 in about
-    # two thirds of -O3's time. OPTIMISED keeps the build's level (the toolchain checks).
+  elseif(ARG_NEEDS_CLI)
+    # These run the program and read its files: their own code need not be fast, and at -O1
+    # it compiles in two thirds of -O3's time.
     target_compile_options(${name} PRIVATE -O1)
   endif()
   if(SLAMKIT_TEST_PER_PROGRAM)
