@@ -18,7 +18,9 @@ std::string ReaderOf(const char* program) {
   std::string name = program;
   name = name.substr(name.find_last_of('/') + 1);  // npos + 1 == 0: no folder
   const std::string suffix = "_fuzzer";
-  if (name.size() > suffix.size() && name.ends_with(suffix)) name.resize(name.size() - suffix.size());
+  if (name.size() > suffix.size() && name.ends_with(suffix)) {
+    name.resize(name.size() - suffix.size());
+  }
   return name;
 }
 
@@ -32,7 +34,9 @@ extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
   if (g_harness == nullptr) {
     std::fprintf(stderr, "slamkit fuzz: no harness for '%s'; start this program as READER_fuzzer "
                          "(the links beside it), READER one of:", reader.c_str());
-    for (const slamkit::fuzz::Harness& h : slamkit::fuzz::kHarnesses) std::fprintf(stderr, " %s", h.reader);
+    for (const slamkit::fuzz::Harness& h : slamkit::fuzz::kHarnesses) {
+      std::fprintf(stderr, " %s", h.reader);
+    }
     std::fprintf(stderr, "\n");
     std::exit(2);
   }

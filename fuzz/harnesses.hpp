@@ -2,8 +2,9 @@
 
 // Every reader's harness, one function each (READER_fuzzer.cpp), in one program: libFuzzer
 // allows one entry point per program, and one program compiles and links once where thirteen
-// programs took 7 % of the sanitizer tree's build (52 of 765 CPU-seconds). fuzz_main.cpp picks the harness by the name the
-// program is started under (bin/READER_fuzzer, a link to bin/slamkit_fuzzer).
+// programs took 7 % of the sanitizer tree's build (52 of 765 CPU-seconds). fuzz_main.cpp picks
+// the harness by the name the program is started under (bin/READER_fuzzer, a link to
+// bin/slamkit_fuzzer).
 
 #include <cstddef>
 #include <cstdint>
