@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "compressed_area.hpp"
 #include "slamkit/core/angle.hpp"
 
 namespace slamkit {
@@ -42,6 +43,7 @@ int BlockEkf::RegisterKind(const BlockKind& kind) {
 }
 
 void BlockEkf::Clear() {
+  area_.reset();
   x_.setZero();
   P_.setZero();
   U_.setZero();
@@ -71,6 +73,11 @@ void BlockEkf::Reserve(int state_size) {
 }
 
 int BlockEkf::AddBlock(int kind, const BlockVector& mean, const BlockMatrix& cov) {
+  if (area_) {
+    const int local = area_->local.AddBlock(kind, mean, cov);
+    area_->local_of.push_back(local);
+    return RecordBlock(kind);
+  }
   const int dim = kinds_[kind].dim;
   Reserve(n_ + dim);
   P_.block(0, n_, n_, dim).setZero();
@@ -99,8 +106,7 @@ BlockEkf BlockEkf::Marginal(std::span<const int> blocks) const {
   return m;
 }
 
-// Records a block whose mean and covariance are already written at offset n_.
-int BlockEkf::AppendBlock(int kind) {
+int BlockEkf::RecordBlock(int kind) {
   const int dim = kinds_[kind].dim;
   const int index = NumBlocks();
   blocks_.push_back({kind, n_, dim});
@@ -109,10 +115,18 @@ int BlockEkf::AppendBlock(int kind) {
   if (kinds_[kind].normalise) normalised_blocks_.push_back(index);
   n_ += dim;
   if (kinds_[kind].is_pose) {
-    // A new pose slot: the cache is rebuilt from the current columns at the next update.
-    ApplyPendingDowndate();
     pose_slot_[index] = static_cast<int>(pose_blocks_.size());
     pose_blocks_.push_back(index);
+  }
+  return index;
+}
+
+// Records a block whose mean and covariance are already written at offset n_.
+int BlockEkf::AppendBlock(int kind) {
+  const int index = RecordBlock(kind);
+  if (kinds_[kind].is_pose) {
+    // A new pose slot: the cache is rebuilt from the current columns at the next update.
+    ApplyPendingDowndate();
     pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
   }
   return index;
@@ -152,6 +166,13 @@ void BlockEkf::StartPoseCache() {
 // SPEC S2, Eq. 2 (Probabilistic Robotics Table 10.1): only the moving pose's rows change.
 void BlockEkf::PredictPose(int block, const Pose2& moved, const Eigen::Matrix3d& J_x_x,
                            const ControlJacobian& J_x_u, const ControlCovariance& Q) {
+  if (area_) {
+    if (IsActive(block)) {
+      area_->local.PredictPose(area_->local_of[block], moved, J_x_x, J_x_u, Q);
+      return;
+    }
+    Synchronise();
+  }
   ApplyPendingDowndate();
   const Eigen::Matrix3d& F = J_x_x;
   const ControlJacobian& G = J_x_u;
@@ -203,6 +224,7 @@ void BlockEkf::TransformBlockRows(int block, const BlockMatrix& J) {
 }
 
 Eigen::MatrixXd BlockEkf::Covariance() const {
+  if (area_) return CompressedCovariance();
   Eigen::MatrixXd P = P_.topLeftCorner(n_, n_).selfadjointView<Eigen::Upper>();
   if (m_ > 0) P.noalias() -= U_.topLeftCorner(n_, m_) * U_.topLeftCorner(n_, m_).transpose();
   return P;
@@ -212,6 +234,7 @@ Eigen::MatrixXd BlockEkf::Covariance() const {
 // test bites on the product U Uᵀ of a pending one; finiteness and PSD bite either way.
 std::optional<std::string> BlockEkf::HealthProblem(const StateHealthParams& params,
                                                    bool check_psd) const {
+  if (area_) return AreaHealthProblem(params, check_psd);
   if (m_ > 0 || check_psd) return GaussianHealthProblem(State(), Covariance(), params, check_psd);
   // Nothing pending and no PSD test: the stored triangle is the covariance, so checking its
   // entries is all that is left, without the O(n²) copy (the every-update check in Debug).
@@ -223,6 +246,7 @@ std::optional<std::string> BlockEkf::HealthProblem(const StateHealthParams& para
 }
 
 bool BlockEkf::BlockFinite(int block) const {
+  if (area_) return Mean(block).allFinite() && CovarianceBlock(block, block).allFinite();
   const int o = blocks_[block].offset, d = blocks_[block].dim;
   if (!x_.segment(o, d).allFinite()) return false;
   if (m_ > 0) {

@@ -1,6 +1,9 @@
 // BlockEkf's augmentation with a new block, dispatched on the dimensions involved.
 
+#include <algorithm>
+
 #include "block_dispatch.hpp"
+#include "compressed_area.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 
 namespace slamkit {
@@ -77,6 +80,16 @@ void BlockEkf::AugmentFixed(const BlockVector& mean, std::span<const BlockJacobi
 int BlockEkf::Augment(int kind, const BlockVector& mean,
                       std::span<const BlockJacobian> J_new_blocks, const BlockMatrix& J_new_z,
                       const BlockMatrix& R) {
+  if (area_) {
+    BlockJacobians local;
+    for (const BlockJacobian& h : J_new_blocks) local.Add(area_->local_of[h.block], h.J);
+    const auto view = local.view();
+    if (std::all_of(view.begin(), view.end(), [](const BlockJacobian& h) { return h.block >= 0; })) {
+      area_->local_of.push_back(area_->local.Augment(kind, mean, view, J_new_z, R));
+      return RecordBlock(kind);
+    }
+    Synchronise();
+  }
   const int dim = kinds_[kind].dim;
   Reserve(n_ + dim);
   WithDim(dim, [&](auto D) { AugmentFixed<decltype(D)::value>(mean, J_new_blocks, J_new_z, R); });

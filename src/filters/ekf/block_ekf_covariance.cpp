@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 
 #include "block_dispatch.hpp"
+#include "compressed_area.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 
 namespace slamkit {
@@ -35,6 +36,7 @@ Eigen::Matrix<double, R, C> BlockEkf::CurrentBlockOf(int a, int b) const {
 }
 
 Eigen::MatrixXd BlockEkf::CovarianceBlock(int a, int b) const {
+  if (area_) return CompressedCovarianceBlock(a, b);
   return WithDim(BlockDim(a), [&](auto R) {
     return WithDim(BlockDim(b), [&](auto C) -> Eigen::MatrixXd {
       return CurrentBlockOf<decltype(R)::value, decltype(C)::value>(a, b);
@@ -43,19 +45,27 @@ Eigen::MatrixXd BlockEkf::CovarianceBlock(int a, int b) const {
 }
 
 void BlockEkf::ApplyPendingDowndate() {
+  if (area_) {
+    area_->local.ApplyPendingDowndate();
+    return;
+  }
   if (m_ == 0) return;
+  SubtractFromTriangle(U_.topLeftCorner(n_, m_), U_.topLeftCorner(n_, m_));
+  m_ = 0;
+  NormaliseBlocks();
+}
+
+void BlockEkf::SubtractFromTriangle(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                                    const Eigen::Ref<const Eigen::MatrixXd>& B) {
   // Fixed blocks, whatever the thread count, so the sums and hence the bits never change.
   constexpr int kBlock = 128;
-  const auto U = U_.topLeftCorner(n_, m_);
   const int blocks = (n_ + kBlock - 1) / kBlock;
   tbb::parallel_for(0, blocks, [&](int b) {
     const int j0 = b * kBlock, w = std::min(kBlock, n_ - j0);
-    const auto U_j = U.middleRows(j0, w);
-    P_.block(0, j0, j0, w).noalias() -= U.topRows(j0) * U_j.transpose();
-    P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= U_j * U_j.transpose();
+    const auto B_j = B.middleRows(j0, w);
+    P_.block(0, j0, j0, w).noalias() -= A.topRows(j0) * B_j.transpose();
+    P_.block(j0, j0, w, w).triangularView<Eigen::Upper>() -= A.middleRows(j0, w) * B_j.transpose();
   });
-  m_ = 0;
-  NormaliseBlocks();
 }
 
 // S of an observation of two blocks a and b given P_aa: the one expression both the generic
@@ -99,12 +109,19 @@ Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearis
 }
 
 BlockMatrix BlockEkf::InnovationCovariance(const Linearisation& obs) const {
+  if (area_) {
+    if (const std::optional<Linearisation> local = ToArea(obs)) {
+      return area_->local.InnovationCovariance(*local);
+    }
+    return GenericInnovationCovariance(obs);
+  }
   return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) -> BlockMatrix {
     return InnovationCovarianceFixed<decltype(Z)::value>(obs);
   });
 }
 
 Eigen::Matrix3d BlockEkf::PoseCovarianceOf(int block) const {
+  if (area_) return CovarianceBlock(block, block);
   return CurrentBlockOf<3, 3>(block, block);
 }
 
@@ -112,12 +129,22 @@ Eigen::Matrix3d BlockEkf::PoseCovarianceOf(int block) const {
 // small products and the 2×2 LLT cost as much in calls as in arithmetic.
 __attribute__((flatten)) double BlockEkf::MahalanobisSquaredPosePoint(
     const PosePointObservation& obs) const {
+  if (area_) [[unlikely]] {
+    return CompressedMahalanobisSquaredPosePoint(obs);
+  }
   const Eigen::Matrix2d S =
       TwoBlockS<2, 3, 2>(*obs.P_pose, obs.pose, obs.point, obs.J_pose, obs.J_point, *obs.R);
   return obs.innovation.dot(S.llt().solve(obs.innovation));
 }
 
 double BlockEkf::MahalanobisSquared(const Linearisation& obs) const {
+  if (area_) {
+    if (const std::optional<Linearisation> local = ToArea(obs)) {
+      return area_->local.MahalanobisSquared(*local);
+    }
+    const BlockMatrix S = GenericInnovationCovariance(obs);
+    return obs.innovation.dot(S.llt().solve(obs.innovation));
+  }
   return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) {
     constexpr int kZ = decltype(Z)::value;
     const Eigen::Matrix<double, kZ, 1> nu = obs.innovation;

@@ -5,6 +5,7 @@
 #include <Eigen/Cholesky>
 
 #include "block_dispatch.hpp"
+#include "compressed_area.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 
 namespace slamkit {
@@ -100,6 +101,10 @@ bool BlockEkf::UpdateFixed(const Linearisation& obs) {
 }
 
 bool BlockEkf::Update(const Linearisation& obs) {
+  if (area_) {
+    if (const std::optional<Linearisation> local = ToArea(obs)) return area_->local.Update(*local);
+    Synchronise();
+  }
   return WithDim(static_cast<int>(obs.innovation.size()),
                  [&](auto Z) { return UpdateFixed<decltype(Z)::value>(obs); });
 }

@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -92,9 +93,22 @@ struct PosePointObservation {
 // by whatever needs the stored triangle: prediction, growth, the filter at the end of a scan).
 // The result is the sequential EKF's: each observation is linearised at the mean its
 // predecessors left.
+//
+// Compressed updates (Guivant & Nebot, IEEE T-RA 2001): after Compress(active), predictions,
+// updates and augmentations that touch only the active blocks (and blocks added since) cost
+// O(a²) in the active area's a entries; the rest of the state is brought up to date by
+// Synchronise() in O(n²·a₀), a₀ the area's size when it was compressed. Reads of any block are
+// exact meanwhile (a block outside the area costs O(a₀²)); an update or prediction touching one
+// synchronises first. After Synchronise() state and covariance equal the uncompressed filter's
+// (up to rounding).
 class BlockEkf {
  public:
   explicit BlockEkf(int initial_capacity = 64);
+  BlockEkf(const BlockEkf& other);
+  BlockEkf& operator=(const BlockEkf& other);
+  BlockEkf(BlockEkf&& other) noexcept;
+  BlockEkf& operator=(BlockEkf&& other) noexcept;
+  ~BlockEkf();
 
   // Registers a block kind; returns its id. Kind 0 is the pose (kPoseKind).
   int RegisterKind(const BlockKind& kind);
@@ -131,7 +145,18 @@ class BlockEkf {
   // P₀ ← P₀ − U Uᵀ on the upper triangle, in fixed column blocks run in parallel; then the
   // kinds' normalise steps (see BlockKind), so every block is canonical when nothing is pending.
   void ApplyPendingDowndate();
-  bool HasPendingDowndate() const { return m_ > 0; }
+  bool HasPendingDowndate() const;
+
+  // Starts a compressed area of `active` blocks (synchronising any area before): see the class
+  // comment. Blocks added later join the area.
+  void Compress(std::span<const int> active);
+  // The global update: every block current again, the area closed. O(n²·a₀); nothing if none.
+  void Synchronise();
+  bool IsCompressed() const { return area_ != nullptr; }
+  // Whether block `block` is in the compressed area (every block is when none is open).
+  bool IsActive(int block) const;
+  // The compressed area's state size (its blocks' entries), 0 when none is open.
+  int ActiveSize() const;
 
   int NumBlocks() const { return static_cast<int>(blocks_.size()); }
   int BlockKindOf(int block) const { return blocks_[block].kind; }
@@ -140,8 +165,14 @@ class BlockEkf {
   int StateSize() const { return n_; }
   // Entries allocated for the state; it grows by doubling beyond this.
   int Capacity() const { return static_cast<int>(x_.size()); }
-  auto Mean(int block) const { return x_.segment(blocks_[block].offset, blocks_[block].dim); }
-  Pose2 PoseOf(int block) const { return Pose2(x_.segment<3>(blocks_[block].offset)); }
+  BlockVector Mean(int block) const {
+    if (area_) return CompressedMean(block);
+    return x_.segment(blocks_[block].offset, blocks_[block].dim);
+  }
+  Pose2 PoseOf(int block) const {
+    if (area_) return Pose2(Eigen::Vector3d(CompressedMean(block)));
+    return Pose2(x_.segment<3>(blocks_[block].offset));
+  }
   // Covariance block (a, b) of the current posterior (through any pending downdate).
   Eigen::MatrixXd CovarianceBlock(int a, int b) const;
   // The full symmetric covariance and the mean (copies; O(n²), for tests and output).
@@ -151,7 +182,7 @@ class BlockEkf {
   // touches only these blocks changes them exactly as it would in the whole filter, at O(k²) for
   // their k entries instead of O(n²). Each block at most once.
   BlockEkf Marginal(std::span<const int> blocks) const;
-  Eigen::VectorXd State() const { return x_.head(n_); }
+  Eigen::VectorXd State() const;
   // GaussianHealthProblem() of the mean and the effective covariance P₀ − U Uᵀ (a pending
   // downdate is accounted for, not applied: the check only reads). O(n²), O(n³) with `check_psd`.
   std::optional<std::string> HealthProblem(const StateHealthParams& params, bool check_psd) const;
@@ -166,6 +197,25 @@ class BlockEkf {
     int offset;
     int dim;
   };
+  struct CompressedArea;  // block_ekf_compressed.cpp
+  // The compressed area's counterparts of the public reads and changes (area_ set).
+  BlockVector CompressedMean(int block) const;
+  Eigen::MatrixXd CompressedCovarianceBlock(int a, int b) const;
+  Eigen::MatrixXd CompressedCovariance() const;
+  // S = Σ H_a P_ab H_bᵀ + R through CovarianceBlock(), for observations reaching outside the area.
+  BlockMatrix GenericInnovationCovariance(const Linearisation& obs) const;
+  double CompressedMahalanobisSquaredPosePoint(const PosePointObservation& obs) const;
+  std::optional<std::string> AreaHealthProblem(const StateHealthParams& params,
+                                               bool check_psd) const;
+  // `obs` with its blocks renamed to the area's filter's, if they are all active.
+  std::optional<Linearisation> ToArea(const Linearisation& obs) const;
+  // Block `block`'s bookkeeping (offset n_, angles, pose slot) without touching the storage.
+  int RecordBlock(int kind);
+  // The stored triangle P ← P − A Bᵀ (A Bᵀ symmetric), in fixed column blocks run in parallel.
+  void SubtractFromTriangle(const Eigen::Ref<const Eigen::MatrixXd>& A,
+                            const Eigen::Ref<const Eigen::MatrixXd>& B);
+  // Rows [r, r+rn) × columns [c, c+cn) of the current covariance, any ranges.
+  Eigen::MatrixXd CurrentRange(int r, int rn, int c, int cn) const;
   // Columns [c, c+k) of the current covariance P₀ − U Uᵀ, gathered from the stored triangle.
   Eigen::MatrixXd CurrentColumns(int c, int k) const;
   // The current columns of block `block`: cached for pose blocks while downdates are pending.
@@ -216,6 +266,7 @@ class BlockEkf {
   Eigen::MatrixXd U_;  // capacity rows; the first m_ columns are the deferred downdate factor
   Eigen::MatrixXd pose_cols_;  // capacity × 3·poses: current pose columns while m_ > 0
   int m_ = 0;
+  std::unique_ptr<CompressedArea> area_;  // while compressed
 };
 
 }  // namespace slamkit

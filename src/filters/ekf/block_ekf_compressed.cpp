@@ -1,0 +1,242 @@
+// BlockEkf's compressed updates (Guivant & Nebot, "Optimization of the Simultaneous Localization
+// and Map-Building Algorithm for Real-Time Implementation", IEEE T-RA 17(3), 2001, Sec. III):
+// opening an area, the global update, and reads of the whole state while an area is open.
+
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <stdexcept>
+
+#include "slamkit/core/angle.hpp"
+#include "compressed_area.hpp"
+#include "slamkit/filters/ekf/block_ekf.hpp"
+
+namespace slamkit {
+
+
+BlockEkf::BlockEkf(const BlockEkf& other)
+    : kinds_(other.kinds_),
+      blocks_(other.blocks_),
+      pose_blocks_(other.pose_blocks_),
+      pose_slot_(other.pose_slot_),
+      angle_indices_(other.angle_indices_),
+      normalised_blocks_(other.normalised_blocks_),
+      n_(other.n_),
+      x_(other.x_),
+      P_(other.P_),
+      U_(other.U_),
+      pose_cols_(other.pose_cols_),
+      m_(other.m_),
+      area_(other.area_ ? std::make_unique<CompressedArea>(*other.area_) : nullptr) {}
+
+BlockEkf& BlockEkf::operator=(const BlockEkf& other) {
+  if (this != &other) *this = BlockEkf(other);
+  return *this;
+}
+
+BlockEkf::BlockEkf(BlockEkf&& other) noexcept = default;
+BlockEkf& BlockEkf::operator=(BlockEkf&& other) noexcept = default;
+BlockEkf::~BlockEkf() = default;
+
+bool BlockEkf::HasPendingDowndate() const {
+  return area_ ? area_->local.HasPendingDowndate() : m_ > 0;
+}
+
+bool BlockEkf::IsActive(int block) const { return !area_ || area_->local_of[block] >= 0; }
+
+int BlockEkf::ActiveSize() const {
+  return area_ ? area_->local.StateSize() - area_->a0 : 0;
+}
+
+// Guivant & Nebot 2001, Sec. III-A: the area's filter starts as the marginal of A₀, with Z beside
+// it (Cov(A₀, Z) = I: φ = I, ψ = 0, θ = 0).
+void BlockEkf::Compress(std::span<const int> active) {
+  Synchronise();
+  ApplyPendingDowndate();
+  auto area = std::make_unique<CompressedArea>();
+  area->local = Marginal(active);
+  area->local_of.assign(blocks_.size(), -1);
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    const int b = active[i];
+    if (area->local_of[b] >= 0) throw std::invalid_argument("BlockEkf::Compress: a repeated block");
+    area->local_of[b] = static_cast<int>(i);
+    for (int r = 0; r < BlockDim(b); ++r) area->a0_index.push_back(BlockOffset(b) + r);
+  }
+  area->a0 = static_cast<int>(area->a0_index.size());
+  area->k0 = static_cast<int>(active.size());
+  area->n0 = n_;
+  BlockEkf& local = area->local;
+  int z_kind[kMaxBlockDim + 1] = {};
+  for (int d = 1; d <= kMaxBlockDim; ++d) z_kind[d] = local.RegisterKind({d, {}, false});
+  for (std::size_t i = 0; i < active.size(); ++i) {
+    const int d = BlockDim(active[i]);
+    const int z = local.AddBlock(z_kind[d], BlockVector::Zero(d), BlockMatrix::Zero(d, d));
+    for (int r = 0; r < d; ++r) {
+      local.P_(local.BlockOffset(static_cast<int>(i)) + r, local.BlockOffset(z) + r) = 1.0;
+    }
+  }
+  area_ = std::move(area);
+}
+
+// Guivant & Nebot 2001, Sec. III-B (the global update): x_B += C θ, P_BB −= C ψ Cᵀ and
+// P_{A,B} = φ Cᵀ, then A's own mean and covariance from the area's filter.
+void BlockEkf::Synchronise() {
+  if (!area_) return;
+  std::unique_ptr<CompressedArea> area = std::move(area_);
+  BlockEkf& local = area->local;
+  local.ApplyPendingDowndate();
+  const int n0 = area->n0, a0 = area->a0, n = n_;
+  // C over the whole of the old state, with A₀'s rows zero so that they stay as they are.
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n0, a0);
+  for (int b = 0; b < static_cast<int>(area->local_of.size()); ++b) {
+    if (area->local_of[b] < 0 && blocks_[b].offset < n0) {
+      C.middleRows(blocks_[b].offset, blocks_[b].dim) = area->CrossRows(*this, b);
+    }
+  }
+  const Eigen::MatrixXd psi = area->Psi();
+  x_.head(n0) += C * area->Theta();
+  n_ = n0;  // the triangle update below and the growth see the old state
+  SubtractFromTriangle(C * psi, C);
+  n_ = n;
+  if (n > x_.size()) {
+    n_ = n0;
+    Reserve(n);
+    n_ = n;
+  }
+  // The area's blocks (A₀ and those added since): their entries in the whole state.
+  std::vector<int> local_index, whole_index;
+  for (int b = 0; b < NumBlocks(); ++b) {
+    const int lb = area->local_of[b];
+    if (lb < 0) continue;
+    for (int r = 0; r < blocks_[b].dim; ++r) {
+      local_index.push_back(local.BlockOffset(lb) + r);
+      whole_index.push_back(blocks_[b].offset + r);
+    }
+  }
+  const int a = static_cast<int>(local_index.size());
+  Eigen::MatrixXd phi(a, a0);
+  for (int i = 0; i < a; ++i) phi.row(i) = local.CurrentRange(local_index[i], 1, a0, a0);
+  const Eigen::MatrixXd cross = phi * C.transpose();  // a × n0; zero against A₀
+  std::vector<char> in_area(n, 0);
+  for (const int w : whole_index) in_area[w] = 1;
+  for (int i = 0; i < a; ++i) {
+    const int w = whole_index[i];
+    x_[w] = local.x_[local_index[i]];
+    for (int j = 0; j < n0; ++j) {
+      if (in_area[j]) continue;
+      (w <= j ? P_(w, j) : P_(j, w)) = cross(i, j);
+    }
+    for (int k = 0; k < a; ++k) {
+      const int v = whole_index[k];
+      if (w <= v) P_(w, v) = local.CurrentRange(local_index[i], 1, local_index[k], 1)(0, 0);
+    }
+  }
+  pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
+  WrapAngles();
+  NormaliseBlocks();
+}
+
+std::optional<Linearisation> BlockEkf::ToArea(const Linearisation& obs) const {
+  Linearisation renamed = obs;
+  for (int i = 0; i < renamed.H.size; ++i) {
+    int& block = renamed.H.items[i].block;
+    block = area_->local_of[block];
+    if (block < 0) return std::nullopt;
+  }
+  return renamed;
+}
+
+BlockMatrix BlockEkf::GenericInnovationCovariance(const Linearisation& obs) const {
+  BlockMatrix S = obs.R;
+  for (const BlockJacobian& a : obs.H.view()) {
+    for (const BlockJacobian& b : obs.H.view()) {
+      S += a.J * CovarianceBlock(a.block, b.block) * b.J.transpose();
+    }
+  }
+  return S;
+}
+
+__attribute__((noinline)) double BlockEkf::CompressedMahalanobisSquaredPosePoint(const PosePointObservation& obs) const {
+  PosePointObservation local = obs;
+  local.pose = area_->local_of[obs.pose];
+  local.point = area_->local_of[obs.point];
+  if (local.pose >= 0 && local.point >= 0) {
+    return area_->local.MahalanobisSquaredPosePoint(local);
+  }
+  const Eigen::Matrix<double, 2, 3> cross = obs.J_point * CovarianceBlock(obs.point, obs.pose);
+  const Eigen::Matrix2d S_cross = cross * obs.J_pose.transpose();
+  const Eigen::Matrix2d S = obs.J_pose * *obs.P_pose * obs.J_pose.transpose() + S_cross +
+                            S_cross.transpose() +
+                            obs.J_point * CovarianceBlock(obs.point, obs.point) *
+                                obs.J_point.transpose() +
+                            *obs.R;
+  return obs.innovation.dot(S.llt().solve(obs.innovation));
+}
+
+BlockVector BlockEkf::CompressedMean(int block) const {
+  const CompressedArea& area = *area_;
+  const int lb = area.local_of[block];
+  if (lb >= 0) return area.local.Mean(lb);
+  const Block& b = blocks_[block];
+  BlockVector mean = x_.segment(b.offset, b.dim) + area.CrossRows(*this, block) * area.Theta();
+  for (const int c : kinds_[b.kind].angle_components) mean[c] = WrapAngle(mean[c]);
+  return mean;
+}
+
+Eigen::MatrixXd BlockEkf::CompressedCovarianceBlock(int a, int b) const {
+  const CompressedArea& area = *area_;
+  const int la = area.local_of[a], lb = area.local_of[b];
+  if (la >= 0 && lb >= 0) return area.local.CovarianceBlock(la, lb);
+  if (la >= 0) return area.Phi(la) * area.CrossRows(*this, b).transpose();
+  if (lb >= 0) return area.CrossRows(*this, a) * area.Phi(lb).transpose();
+  const Eigen::MatrixXd C_a = area.CrossRows(*this, a), C_b = area.CrossRows(*this, b);
+  const Block &ba = blocks_[a], &bb = blocks_[b];
+  Eigen::MatrixXd P0(ba.dim, bb.dim);
+  for (int r = 0; r < ba.dim; ++r) {
+    for (int c = 0; c < bb.dim; ++c) {
+      const int i = ba.offset + r, k = bb.offset + c;
+      P0(r, c) = i <= k ? P_(i, k) : P_(k, i);
+    }
+  }
+  return P0 - C_a * area.Psi() * C_b.transpose();
+}
+
+// The whole covariance as Synchronise() would leave it, without closing the area: O(n²·a₀).
+Eigen::MatrixXd BlockEkf::CompressedCovariance() const {
+  BlockEkf whole(*this);
+  whole.Synchronise();
+  return whole.Covariance();
+}
+
+Eigen::VectorXd BlockEkf::State() const {
+  if (!area_) return x_.head(n_);
+  Eigen::VectorXd x(n_);
+  for (int b = 0; b < NumBlocks(); ++b) x.segment(BlockOffset(b), BlockDim(b)) = Mean(b);
+  return x;
+}
+
+// The area's filter without Z (whose covariance −ψ is not one): the blocks an update changes.
+// The rest changes by C θ and C ψ Cᵀ, checked when Synchronise() applies them.
+std::optional<std::string> BlockEkf::AreaHealthProblem(const StateHealthParams& params,
+                                                       bool check_psd) const {
+  const BlockEkf& local = area_->local;
+  std::vector<int> blocks;
+  for (int b = 0; b < local.NumBlocks(); ++b) {
+    if (b < area_->k0 || b >= 2 * area_->k0) blocks.push_back(b);
+  }
+  return local.Marginal(blocks).HealthProblem(params, check_psd);
+}
+
+Eigen::MatrixXd BlockEkf::CurrentRange(int r, int rn, int c, int cn) const {
+  Eigen::MatrixXd block(rn, cn);
+  for (int j = 0; j < cn; ++j) {
+    for (int i = 0; i < rn; ++i) {
+      const int p = r + i, q = c + j;
+      block(i, j) = p <= q ? P_(p, q) : P_(q, p);
+    }
+  }
+  if (m_ > 0) block.noalias() -= U_.block(r, 0, rn, m_) * U_.block(c, 0, cn, m_).transpose();
+  return block;
+}
+
+}  // namespace slamkit
