@@ -1,6 +1,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -12,6 +13,13 @@
 #include "slamkit/models/point_sensor.hpp"
 
 namespace slamkit {
+
+// A named figure of what a filter's run cost (e.g. the compressed EKF's global updates), for
+// the outputs; filters without such figures report none.
+struct FilterCounter {
+  std::string name;
+  double value = 0.0;
+};
 
 // What every point-landmark SLAM filter offers (EKF-SLAM today; FastSLAM and the cooperative
 // EKF next), so that one harness (Monte Carlo runs, NEES/ANEES, RMSE, association scoring, map
@@ -40,6 +48,10 @@ class LandmarkSlamFilter {
   // if the state is not healthy (non-finite, or a covariance that is not symmetric PSD). The
   // default has nothing to check.
   virtual void CheckOutputHealth() const {}
+  // Brings any deferred work up to date before outputs are read (the compressed EKF's global
+  // update); reads are correct without it, only slower.
+  virtual void Flush() {}
+  virtual std::vector<FilterCounter> Counters() const { return {}; }
 };
 
 }  // namespace slamkit

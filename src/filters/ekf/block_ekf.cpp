@@ -44,6 +44,7 @@ int BlockEkf::RegisterKind(const BlockKind& kind) {
 
 void BlockEkf::Clear() {
   area_.reset();
+  spare_area_.reset();
   x_.setZero();
   P_.setZero();
   U_.setZero();

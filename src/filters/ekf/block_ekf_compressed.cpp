@@ -27,7 +27,7 @@ BlockEkf::BlockEkf(const BlockEkf& other)
       U_(other.U_),
       pose_cols_(other.pose_cols_),
       m_(other.m_),
-      area_(other.area_ ? std::make_unique<CompressedArea>(*other.area_) : nullptr) {}
+      area_(other.area_ ? std::make_unique<CompressedArea>(*other.area_) : nullptr) {}  // no spare
 
 BlockEkf& BlockEkf::operator=(const BlockEkf& other) {
   if (this != &other) *this = BlockEkf(other);
@@ -42,7 +42,7 @@ bool BlockEkf::HasPendingDowndate() const {
   return area_ ? area_->local.HasPendingDowndate() : m_ > 0;
 }
 
-bool BlockEkf::IsActive(int block) const { return !area_ || area_->local_of[block] >= 0; }
+bool BlockEkf::InArea(int block) const { return area_->local_of[block] >= 0; }
 
 int BlockEkf::ActiveSize() const {
   return area_ ? area_->local.StateSize() - area_->a0 : 0;
@@ -53,29 +53,56 @@ int BlockEkf::ActiveSize() const {
 void BlockEkf::Compress(std::span<const int> active) {
   Synchronise();
   ApplyPendingDowndate();
-  auto area = std::make_unique<CompressedArea>();
-  area->local = Marginal(active);
+  std::unique_ptr<CompressedArea> area =
+      spare_area_ ? std::move(spare_area_) : std::make_unique<CompressedArea>();
   area->local_of.assign(blocks_.size(), -1);
+  area->a0_index.clear();
   for (std::size_t i = 0; i < active.size(); ++i) {
     const int b = active[i];
     if (area->local_of[b] >= 0) throw std::invalid_argument("BlockEkf::Compress: a repeated block");
     area->local_of[b] = static_cast<int>(i);
     for (int r = 0; r < BlockDim(b); ++r) area->a0_index.push_back(BlockOffset(b) + r);
   }
-  area->a0 = static_cast<int>(area->a0_index.size());
+  const int a0 = static_cast<int>(area->a0_index.size());
+  area->a0 = a0;
   area->k0 = static_cast<int>(active.size());
   area->n0 = n_;
-  BlockEkf& local = area->local;
-  int z_kind[kMaxBlockDim + 1] = {};
-  for (int d = 1; d <= kMaxBlockDim; ++d) z_kind[d] = local.RegisterKind({d, {}, false});
+  area->StartLocal(*this, active);
+  area_ = std::move(area);
+}
+
+// The area's filter: A₀'s marginal, then Z. Its storage is the last area's when that fits (the
+// area's size changes little from one to the next), with room for the blocks an area adds.
+void BlockEkf::CompressedArea::StartLocal(const BlockEkf& whole, std::span<const int> active) {
+  const int capacity = 2 * a0 + std::max(64, a0 / 2);
+  const int kinds = static_cast<int>(whole.kinds_.size());
+  if (local.Capacity() >= capacity && local.Capacity() <= 2 * capacity &&
+      static_cast<int>(local.kinds_.size()) == kinds + kMaxBlockDim) {
+    local.Clear();
+  } else {
+    local = BlockEkf(capacity);
+    for (int k = 1; k < kinds; ++k) local.RegisterKind(whole.kinds_[k]);  // 0: the pose
+    for (int d = 1; d <= kMaxBlockDim; ++d) local.RegisterKind({d, {}, false});
+  }
+  for (const int b : active) {
+    const Block& block = whole.blocks_[b];
+    local.AddBlock(block.kind, whole.x_.segment(block.offset, block.dim),
+                   BlockMatrix::Zero(block.dim, block.dim));
+  }
+  // A₀'s joint covariance, entry by entry from the whole state's triangle.
+  for (int j = 0; j < a0; ++j) {
+    for (int i = 0; i <= j; ++i) {
+      const int p = a0_index[i], q = a0_index[j];
+      local.P_(i, j) = p <= q ? whole.P_(p, q) : whole.P_(q, p);
+    }
+  }
   for (std::size_t i = 0; i < active.size(); ++i) {
-    const int d = BlockDim(active[i]);
-    const int z = local.AddBlock(z_kind[d], BlockVector::Zero(d), BlockMatrix::Zero(d, d));
+    const int d = whole.blocks_[active[i]].dim;
+    const int z = local.AddBlock(kinds + d - 1, BlockVector::Zero(d), BlockMatrix::Zero(d, d));
     for (int r = 0; r < d; ++r) {
       local.P_(local.BlockOffset(static_cast<int>(i)) + r, local.BlockOffset(z) + r) = 1.0;
     }
   }
-  area_ = std::move(area);
 }
 
 // Guivant & Nebot 2001, Sec. III-B (the global update): x_B += C θ, P_BB −= C ψ Cᵀ and
@@ -83,6 +110,7 @@ void BlockEkf::Compress(std::span<const int> active) {
 void BlockEkf::Synchronise() {
   if (!area_) return;
   std::unique_ptr<CompressedArea> area = std::move(area_);
+  spare_area_ = nullptr;
   BlockEkf& local = area->local;
   local.ApplyPendingDowndate();
   const int n0 = area->n0, a0 = area->a0, n = n_;
@@ -114,8 +142,12 @@ void BlockEkf::Synchronise() {
     }
   }
   const int a = static_cast<int>(local_index.size());
+  // The area's filter has nothing pending: its triangle is its covariance.
+  const auto local_cov = [&local](int p, int q) { return p <= q ? local.P_(p, q) : local.P_(q, p); };
   Eigen::MatrixXd phi(a, a0);
-  for (int i = 0; i < a; ++i) phi.row(i) = local.CurrentRange(local_index[i], 1, a0, a0);
+  for (int j = 0; j < a0; ++j) {
+    for (int i = 0; i < a; ++i) phi(i, j) = local_cov(local_index[i], a0 + j);
+  }
   const Eigen::MatrixXd cross = phi * C.transpose();  // a × n0; zero against A₀
   std::vector<char> in_area(n, 0);
   for (const int w : whole_index) in_area[w] = 1;
@@ -128,12 +160,13 @@ void BlockEkf::Synchronise() {
     }
     for (int k = 0; k < a; ++k) {
       const int v = whole_index[k];
-      if (w <= v) P_(w, v) = local.CurrentRange(local_index[i], 1, local_index[k], 1)(0, 0);
+      if (w <= v) P_(w, v) = local_cov(local_index[i], local_index[k]);
     }
   }
   pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
   WrapAngles();
   NormaliseBlocks();
+  spare_area_ = std::move(area);
 }
 
 std::optional<Linearisation> BlockEkf::ToArea(const Linearisation& obs) const {

@@ -13,6 +13,7 @@
 //   x_B = x_B⁰ + C θ,  P_{A,B} = φ Cᵀ,  P_BB = P_BB⁰ − C ψ Cᵀ   (Eqs. 22-24).
 
 #include <Eigen/Core>
+#include <span>
 #include <vector>
 
 #include "slamkit/filters/ekf/block_ekf.hpp"
@@ -27,6 +28,7 @@ struct BlockEkf::CompressedArea {
   int k0 = 0;                 // A₀'s blocks; Z's are local blocks [k0, 2·k0)
   int n0 = 0;                 // the whole state's size at compression (B ∪ A₀)
 
+  void StartLocal(const BlockEkf& whole, std::span<const int> active);
   // C_b: block `b`'s rows of P⁰ against A₀ (d × a0), gathered from the stored triangle.
   Eigen::MatrixXd CrossRows(const BlockEkf& whole, int b) const {
     const int o = whole.blocks_[b].offset, d = whole.blocks_[b].dim;

@@ -55,7 +55,8 @@ EkfSlam::EkfSlam(const EkfSlamParams& params, std::unique_ptr<MotionModel> motio
       ekf_(0),  // Reset() allocates the state at its capacity
       point_kind_(ekf_.RegisterKind(kPointKind)),
       point_model_(*sensor_, point_kind_, params.association_margin_m),
-      fej_model_(*sensor_) {
+      fej_model_(*sensor_),
+      area_(params.active_area) {
   Reset(Pose2());
 }
 
@@ -71,6 +72,7 @@ void EkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   fej_model_.Clear();
   fej_model_.SetPriorPose(pose);
   landmarks_.Clear();
+  area_.Reset();
   predictions_ = 0;
   updates_ = 0;
   health_checks_ = 0;
@@ -157,6 +159,9 @@ std::vector<AssociationDecision> EkfSlam::Update(std::span<const PointObservatio
   decisions.reserve(observations.size());
   // A landmark takes at most one sighting per scan: two sightings are two landmarks.
   std::vector<char> taken(NumLandmarks() + observations.size(), 0);
+  if (params_.update == EkfUpdateMode::kCompressed) {
+    area_.Maintain(ekf_, kPoseBlock, landmarks_.Blocks(), sensor_->MaxRange());
+  }
   const int n = static_cast<int>(observations.size());
   if (params_.schedule == UpdateSchedule::kPerScan ||
       params_.association_method == AssociationMethod::kJointCompatibility ||
@@ -203,6 +208,14 @@ std::string EkfSlam::HealthWhere(HealthStep step) const {
   }
   s << landmarks << " landmarks)";
   return s.str();
+}
+
+std::vector<FilterCounter> EkfSlam::Counters() const {
+  if (params_.update != EkfUpdateMode::kCompressed) return {};
+  const CompressionStats& s = area_.stats();
+  return {{"global_updates", double(s.global_updates)},
+          {"global_update_s", s.global_update_s},
+          {"max_active_size", double(s.max_active_size)}};
 }
 
 Eigen::Matrix3d EkfSlam::PoseCovariance() const {

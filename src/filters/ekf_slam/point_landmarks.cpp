@@ -45,7 +45,9 @@ class PointSightings::Context final : public AssociationContext {
     std::vector<AssociationCandidate>& candidates = s_.map_->candidate_scratch();
     candidates.clear();
     for (int l = 0; l < NumLandmarks(); ++l) {
-      if (Taken(l) || !gate_.Passes(ekf_.Mean(s_.map_->Block(l)))) continue;
+      // Outside a compressed area nothing is within reach (ActiveArea): skip the O(a) mean.
+      const int block = s_.map_->Block(l);
+      if (Taken(l) || !ekf_.IsActive(block) || !gate_.Passes(ekf_.Mean(block))) continue;
       candidates.push_back({l, Distance(i, l)});
     }
     return candidates;

@@ -150,6 +150,11 @@ CoopConfig LoadCoopConfig(const std::filesystem::path& path) {
         .Fail("known_association", "is false, but ekf.association is known: set ekf.association "
                                    "to nn, ml, gnn or jcbb");
   }
+  if (c.filter.filter.ekf.update != EkfUpdateMode::kDense) {
+    config::TableSection(yaml, path.string(), table, "ekf")
+        .Fail("update", "is compressed, which only the single-vehicle EKF offers (slamkit mc, "
+                        "slamkit run): set it to dense");
+  }
   // The filters' sensors are the true ones: the same noise and range (a real log's are the
   // config's own statement of them).
   c.filter.sensor = c.scenario.sensor;

@@ -27,6 +27,9 @@ void AddIsamAssociation(EkfSlamParams& e, IsamFastSlamSettings& f, ParamTable& t
              "a sighting beyond this from every landmark is a new one"),
       config::Integer("", "max_joint_tests", &e.jcbb.max_joint_tests, 1,
                       "JCBB: most joint-compatibility tests a scan may take"),
+      // In EkfUpdateMode's order.
+      config::Choice("", "update", &e.update, {"dense", "compressed"},
+                     "compressed: the EKF's updates touch the active area only"),
       config::Choice("fastslam", "new_landmark_test", &f.new_landmark_test,
                      {"likelihood", "mahalanobis"}, "FastSLAM: what makes a sighting new"),
       config::Optional("fastslam", "gate_chi2", &f.gate_chi2, Bound::kPositive, "",

@@ -131,6 +131,8 @@ void LandmarkRunRecorder::Record(std::vector<AssociationDecision> decisions,
 
 RunResult LandmarkRunRecorder::Finish(const LandmarkWorld& world) {
   RunResult out = std::move(out_);
+  filter_.Flush();
+  out.counters = filter_.Counters();
   filter_.CheckOutputHealth();  // before the map, the one output still read from the state
   out.map = filter_.Map();
   AssociationScorer scorer;

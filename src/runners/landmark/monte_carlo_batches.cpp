@@ -148,6 +148,7 @@ RunSummary SummaryOf(const RunResult& r) {
   s.landmarks_mapped = r.map.landmarks.size();
   s.map_rmse_m = r.map_rmse_m;
   s.association = r.association;
+  s.counters = r.counters;
   return s;
 }
 

@@ -54,7 +54,10 @@ std::string IndentedEntry(const nlohmann::json& json) {
 }  // namespace
 
 nlohmann::json RunSummaryJson(int k, const RunSummary& r) {
+  nlohmann::json counters = nlohmann::json::object();
+  for (const FilterCounter& c : r.counters) counters[c.name] = c.value;
   return {{"run", k},
+          {"filter_counters", counters},
           {"position_rmse_m", r.rmse.position_m},
           {"heading_rmse_rad", r.rmse.heading_rad},
           {"anees", r.anees},

@@ -121,6 +121,13 @@ void AddScenarioEkfLines(EkfSlamParams& e, ParamTable& t) {
       // The names follow JacobianEstimates' order.
       config::Choice(s, "jacobians", &e.jacobians, {"current", "first_estimates"},
                      "where the Jacobians are evaluated"),
+      // The names follow EkfUpdateMode's order.
+      config::Choice(s, "update", &e.update, {"dense", "compressed"},
+                     "compressed: updates touch the active area only (Guivant & Nebot 2001)"),
+      Number(s, "area_hysteresis", &e.active_area.hysteresis_fraction, kScenarioPos, "",
+             "compressed: a new area when the vehicle is this fraction of its reach away"),
+      Number(s, "area_sigma_factor", &e.active_area.sigma_factor, kScenarioNonNeg, "",
+             "compressed: the area widened by this many position sigmas"),
   };
   t.insert(t.end(), lines.begin(), lines.end());
 }

@@ -154,7 +154,7 @@ class BlockEkf {
   void Synchronise();
   bool IsCompressed() const { return area_ != nullptr; }
   // Whether block `block` is in the compressed area (every block is when none is open).
-  bool IsActive(int block) const;
+  bool IsActive(int block) const { return !area_ || InArea(block); }
   // The compressed area's state size (its blocks' entries), 0 when none is open.
   int ActiveSize() const;
 
@@ -197,7 +197,8 @@ class BlockEkf {
     int offset;
     int dim;
   };
-  struct CompressedArea;  // block_ekf_compressed.cpp
+  struct CompressedArea;  // compressed_area.hpp
+  bool InArea(int block) const;
   // The compressed area's counterparts of the public reads and changes (area_ set).
   BlockVector CompressedMean(int block) const;
   Eigen::MatrixXd CompressedCovarianceBlock(int a, int b) const;
@@ -267,6 +268,7 @@ class BlockEkf {
   Eigen::MatrixXd pose_cols_;  // capacity × 3·poses: current pose columns while m_ > 0
   int m_ = 0;
   std::unique_ptr<CompressedArea> area_;  // while compressed
+  std::unique_ptr<CompressedArea> spare_area_;  // the last area, whose storage the next reuses
 };
 
 }  // namespace slamkit

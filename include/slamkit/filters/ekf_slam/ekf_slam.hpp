@@ -14,6 +14,7 @@
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/first_estimates.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/ekf_slam/active_area.hpp"
 #include "slamkit/filters/ekf_slam/point_landmarks.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/filters/selection/selection.hpp"
@@ -70,6 +71,13 @@ struct EkfSlamParams {
   // the current estimates. FEJ assumes a motion p' = p + R(θ)·δ(u), θ' = θ + Δθ(u) (car-like,
   // unicycle, odometry models).
   JacobianEstimates jacobians = JacobianEstimates::kCurrent;
+  // kCompressed: each scan's updates touch the active area only (Guivant & Nebot 2001), and the
+  // rest of the state is brought up to date when the vehicle leaves the area or the whole state
+  // is read (Covariance(), State(), Map(), CheckOutputHealth()). The estimate is the dense
+  // filter's up to rounding; association considers the area's landmarks, which hold every
+  // landmark within reach.
+  EkfUpdateMode update = EkfUpdateMode::kDense;
+  ActiveAreaParams active_area;  // with kCompressed
 
   bool known_association() const { return association_method == AssociationMethod::kKnown; }
 };
@@ -105,6 +113,9 @@ class EkfSlam final : public LandmarkSlamFilter {
   std::vector<AssociationDecision> Update(std::span<const PointObservation> observations) override;
   // The full check (finite, symmetric, PSD) unless health.mode is kOff; NumericalError if it fails.
   void CheckOutputHealth() const override;
+  void Flush() override { Synchronise(); }
+  // With compressed updates: global_updates, global_update_s and max_active_size.
+  std::vector<FilterCounter> Counters() const override;
 
   // One sequential update of landmark `landmark` with `obs` (Table 10.2, one innovation). The
   // covariance downdate stays deferred until ApplyPendingDowndate(), Predict() or Update();
@@ -132,9 +143,14 @@ class EkfSlam final : public LandmarkSlamFilter {
   // The id of the observation that created the landmark (kNoLandmark if it had none).
   LandmarkId LandmarkSourceId(int landmark) const { return landmarks_.SourceId(landmark); }
   LandmarkMap Map() const override;
-  // The full symmetric covariance (a copy; O(n²), for tests and output).
+  // The full symmetric covariance (a copy; O(n²), for tests and output; O(n²·a) while a
+  // compressed area is open).
   Eigen::MatrixXd Covariance() const { return ekf_.Covariance(); }
   Eigen::VectorXd State() const { return ekf_.State(); }
+  // The global update of compressed updates (nothing with dense ones): every block current.
+  void Synchronise() { area_.Synchronise(ekf_); }
+  // What compressed updates cost so far (zeros with dense ones).
+  const CompressionStats& Compression() const { return area_.stats(); }
   const EkfSlamParams& params() const { return params_; }
   const BlockEkf& ekf() const { return ekf_; }
   // What the selection policy did in the last Update() (all parts of the scan together).
@@ -164,6 +180,7 @@ class EkfSlam final : public LandmarkSlamFilter {
   PointLandmarkModel point_model_;
   FirstEstimatesPointModel fej_model_;  // its prior pose is kept with kCurrent too
   PointLandmarkMap landmarks_;
+  ActiveArea area_;
   long predictions_ = 0;  // since Reset(), to name the step a health check failed at
   long updates_ = 0;
   long health_checks_ = 0;  // every-update checks of the whole state, for the PSD schedule

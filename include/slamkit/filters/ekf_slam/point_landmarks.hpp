@@ -25,6 +25,7 @@ class PointLandmarkMap {
 
   int size() const { return static_cast<int>(blocks_.size()); }
   int Block(int landmark) const { return blocks_[landmark]; }
+  std::span<const int> Blocks() const { return blocks_; }
   LandmarkId SourceId(int landmark) const { return source_ids_[landmark]; }
   // The landmark created from sighting id `id`, or -1.
   int WithSourceId(LandmarkId id) const;

@@ -48,6 +48,7 @@ struct RunResult {
   PoseRmse rmse;
   double map_rmse_m = 0.0;              // landmark error after the best rigid alignment
   AssociationScore association;
+  std::vector<FilterCounter> counters;  // the filter's, at the end of the run
 };
 
 // Runs `filter` once over `sim`'s inputs (the true ids copied into the observations only with
@@ -67,6 +68,7 @@ struct RunSummary {
   AssociationScore association;
   double step_time_mean_s = 0.0;
   double step_time_max_s = 0.0;
+  std::vector<FilterCounter> counters;
 };
 
 struct MonteCarloParams {
