@@ -30,22 +30,22 @@ EkfSlam MakeFilter(EkfUpdateMode update, const RangeBearingParams& sensor,
   params.association_margin_m = 1.0;
   EkfSlam slam(params, std::make_unique<OdometryModel>(odometry),
                std::make_unique<RangeBearingModel>(sensor));
-  slam.Reset(Pose2(30.0, 0.0, std::numbers::pi / 2));
+  slam.Reset(Pose2(40.0, 0.0, std::numbers::pi / 2));
   return slam;
 }
 
 TEST(CompressedEkfSlam, EqualsTheDenseFilterOverFiveThousandSteps) {
   constexpr int kSteps = 5000;
-  constexpr double kStepM = 0.2, kCircleM = 30.0;  // 942 steps a lap: 5.3 laps
-  const RangeBearingParams sensor{.max_range_m = 10.0, .fov_rad = std::numbers::pi / 2,
+  constexpr double kStepM = 0.2, kCircleM = 40.0;  // 1,257 steps a lap: 4 laps
+  const RangeBearingParams sensor{.max_range_m = 10.0, .fov_rad = std::numbers::pi / 3,
                                   .sigma_range_m = 0.05, .sigma_bearing_rad = 0.005};
   const OdometryParams odometry{.sigma_xy_m = 0.01, .sigma_theta_rad = 0.001};
   const RangeBearingModel truth_sensor(sensor);
-  // A jittered 2.2 m grid over 84 m × 84 m: about 550 landmarks within reach of the circle.
+  // A jittered 2.2 m grid over 104 m × 104 m: about 520 landmarks within sight of the circle.
   Rng rng(32);
   std::vector<Eigen::Vector2d> world;
-  for (double x = -42.0; x <= 42.0; x += 2.2) {
-    for (double y = -42.0; y <= 42.0; y += 2.2) {
+  for (double x = -52.0; x <= 52.0; x += 2.2) {
+    for (double y = -52.0; y <= 52.0; y += 2.2) {
       world.push_back(Eigen::Vector2d(x, y) + testing::UniformVector2(rng, -0.8, 0.8, -0.8, 0.8));
     }
   }
