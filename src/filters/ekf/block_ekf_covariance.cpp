@@ -14,33 +14,33 @@ namespace slamkit {
 
 using internal::WithDim;
 using internal::WithDims;
+using internal::WithMeasurementDim;
 
+// Rows [r, r + rows) × columns [c, c + cols); R and C are rows and cols, or Eigen::Dynamic.
 template <int R, int C>
-Eigen::Matrix<double, R, C> BlockEkf::CurrentBlock(int r, int c) const {
-  Eigen::Matrix<double, R, C> block = P_.block<R, C>(r, c);
+SmallMatrix<R, C> BlockEkf::CurrentBlock(int r, int c, int rows, int cols) const {
+  SmallMatrix<R, C> block = P_.block<R, C>(r, c, rows, cols);
   if constexpr (R == C) {
-    if (r == c) block = P_.block<R, C>(r, c).template selfadjointView<Eigen::Upper>();
+    if (r == c) block = P_.block<R, C>(r, c, rows, cols).template selfadjointView<Eigen::Upper>();
   }
   if (m_ > 0) {
-    block.noalias() -= U_.block(r, 0, R, m_) * U_.block(c, 0, C, m_).transpose();
+    block.noalias() -= U_.block(r, 0, rows, m_) * U_.block(c, 0, cols, m_).transpose();
   }
   return block;
 }
 
 // Block (a, b) of the current covariance; the stored triangle holds whichever lies above.
 template <int R, int C>
-Eigen::Matrix<double, R, C> BlockEkf::CurrentBlockOf(int a, int b) const {
-  const int r = blocks_[a].offset, c = blocks_[b].offset;
-  if (r <= c) return CurrentBlock<R, C>(r, c);
-  return CurrentBlock<C, R>(c, r).transpose();
+SmallMatrix<R, C> BlockEkf::CurrentBlockOf(int a, int b) const {
+  const Block &ba = blocks_[a], &bb = blocks_[b];
+  if (ba.offset <= bb.offset) return CurrentBlock<R, C>(ba.offset, bb.offset, ba.dim, bb.dim);
+  return CurrentBlock<C, R>(bb.offset, ba.offset, bb.dim, ba.dim).transpose();
 }
 
 Eigen::MatrixXd BlockEkf::CovarianceBlock(int a, int b) const {
   if (area_) return CompressedCovarianceBlock(a, b);
-  return WithDim(BlockDim(a), [&](auto R) {
-    return WithDim(BlockDim(b), [&](auto C) -> Eigen::MatrixXd {
-      return CurrentBlockOf<decltype(R)::value, decltype(C)::value>(a, b);
-    });
+  return WithDims(BlockDim(a), BlockDim(b), [&](auto R, auto C) -> Eigen::MatrixXd {
+    return CurrentBlockOf<decltype(R)::value, decltype(C)::value>(a, b);
   });
 }
 
@@ -71,31 +71,32 @@ void BlockEkf::SubtractFromTriangle(const Eigen::Ref<const Eigen::MatrixXd>& A,
 // S of an observation of two blocks a and b given P_aa: the one expression both the generic
 // path and the association fast path evaluate, so that their distances agree bit for bit.
 template <int kZ, int kD0, int kD1>
-Eigen::Matrix<double, kZ, kZ> BlockEkf::TwoBlockS(const Eigen::Matrix<double, kD0, kD0>& P_00,
+SmallMatrix<kZ, kZ> BlockEkf::TwoBlockS(const SmallMatrix<kD0, kD0>& P_00,
                                                   int a, int b,
-                                                  const Eigen::Matrix<double, kZ, kD0>& J_0,
-                                                  const Eigen::Matrix<double, kZ, kD1>& J_1,
-                                                  const Eigen::Matrix<double, kZ, kZ>& R) const {
-  const Eigen::Matrix<double, kD0, kD1> P_01 = CurrentBlockOf<kD0, kD1>(a, b);
-  const Eigen::Matrix<double, kD1, kD1> P_11 = CurrentBlockOf<kD1, kD1>(b, b);
-  const Eigen::Matrix<double, kZ, kZ> cross = J_0 * P_01 * J_1.transpose();
+                                                  const SmallMatrix<kZ, kD0>& J_0,
+                                                  const SmallMatrix<kZ, kD1>& J_1,
+                                                  const SmallMatrix<kZ, kZ>& R) const {
+  const SmallMatrix<kD0, kD1> P_01 = CurrentBlockOf<kD0, kD1>(a, b);
+  const SmallMatrix<kD1, kD1> P_11 = CurrentBlockOf<kD1, kD1>(b, b);
+  const SmallMatrix<kZ, kZ> cross = J_0 * P_01 * J_1.transpose();
   return J_0 * P_00 * J_0.transpose() + cross + cross.transpose() +
          J_1 * P_11 * J_1.transpose() + R;
 }
 
 // S = H P Hᵀ + R from the few covariance blocks H touches, O(1) in n.
 template <int kZ>
-Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearisation& obs) const {
-  using MatrixZ = Eigen::Matrix<double, kZ, kZ>;
+SmallMatrix<kZ, kZ> BlockEkf::InnovationCovarianceFixed(const Linearisation& obs) const {
+  using MatrixZ = SmallMatrix<kZ, kZ>;
   const std::span<const BlockJacobian> H = obs.H.view();
   const MatrixZ R = obs.R;
-  MatrixZ S = MatrixZ::Zero();
+  const int z = static_cast<int>(obs.innovation.size());
+  MatrixZ S = MatrixZ::Zero(z, z);
   if (H.size() == 2) {
-    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+    WithDims<kZ != Eigen::Dynamic>(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
       constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
-      const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
-      const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
-      const Eigen::Matrix<double, kD0, kD0> P_00 = CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
+      const SmallMatrix<kZ, kD0> J_0 = H[0].J;
+      const SmallMatrix<kZ, kD1> J_1 = H[1].J;
+      const SmallMatrix<kD0, kD0> P_00 = CurrentBlockOf<kD0, kD0>(H[0].block, H[0].block);
       S = TwoBlockS<kZ, kD0, kD1>(P_00, H[0].block, H[1].block, J_0, J_1, R);
     });
     return S;
@@ -115,7 +116,7 @@ BlockMatrix BlockEkf::InnovationCovariance(const Linearisation& obs) const {
     }
     return GenericInnovationCovariance(obs);
   }
-  return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) -> BlockMatrix {
+  return WithMeasurementDim(static_cast<int>(obs.innovation.size()), [&](auto Z) -> BlockMatrix {
     return InnovationCovarianceFixed<decltype(Z)::value>(obs);
   });
 }
@@ -145,10 +146,10 @@ double BlockEkf::MahalanobisSquared(const Linearisation& obs) const {
     const BlockMatrix S = GenericInnovationCovariance(obs);
     return obs.innovation.dot(S.llt().solve(obs.innovation));
   }
-  return WithDim(static_cast<int>(obs.innovation.size()), [&](auto Z) {
+  return WithMeasurementDim(static_cast<int>(obs.innovation.size()), [&](auto Z) {
     constexpr int kZ = decltype(Z)::value;
-    const Eigen::Matrix<double, kZ, 1> nu = obs.innovation;
-    const Eigen::Matrix<double, kZ, kZ> S = InnovationCovarianceFixed<kZ>(obs);
+    const SmallMatrix<kZ, 1> nu = obs.innovation;
+    const SmallMatrix<kZ, kZ> S = InnovationCovarianceFixed<kZ>(obs);
     return nu.dot(S.llt().solve(nu));
   });
 }

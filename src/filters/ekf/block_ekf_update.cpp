@@ -3,6 +3,7 @@
 // covariance's are compiled apart so that they build side by side).
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 
 #include "block_dispatch.hpp"
 #include "compressed_area.hpp"
@@ -12,32 +13,38 @@ namespace slamkit {
 
 using internal::WithDim;
 using internal::WithDims;
+using internal::WithMeasurementDim;
+
+namespace {
+template <int kZ>
+constexpr bool kFixedZ = kZ != Eigen::Dynamic;
+}  // namespace
 
 // P Hᵀ (n × kZ): H is zero outside the observed blocks, so each costs O(n). Two blocks (pose and
 // landmark, two poses) are summed in one expression, the form the point-landmark filter has
 // always used, so that its results stay bit for bit the same.
 template <int kZ>
-Eigen::Matrix<double, Eigen::Dynamic, kZ> BlockEkf::CovarianceTimesHt(
+TallMatrix<kZ> BlockEkf::CovarianceTimesHt(
     const Linearisation& obs) const {
   const std::span<const BlockJacobian> H = obs.H.view();
-  Eigen::Matrix<double, Eigen::Dynamic, kZ> PHt;
+  TallMatrix<kZ> PHt;
   if (H.size() == 2) {
     Eigen::MatrixXd scratch_0, scratch_1;
     const Eigen::Ref<const Eigen::MatrixXd> P_0 = BlockColumns(H[0].block, scratch_0);
     const Eigen::Ref<const Eigen::MatrixXd> P_1 = BlockColumns(H[1].block, scratch_1);
-    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
-      const Eigen::Matrix<double, kZ, decltype(D0)::value> J_0 = H[0].J;
-      const Eigen::Matrix<double, kZ, decltype(D1)::value> J_1 = H[1].J;
+    WithDims<kFixedZ<kZ>>(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+      const SmallMatrix<kZ, decltype(D0)::value> J_0 = H[0].J;
+      const SmallMatrix<kZ, decltype(D1)::value> J_1 = H[1].J;
       PHt = P_0 * J_0.transpose() + P_1 * J_1.transpose();
     });
     return PHt;
   }
-  PHt.setZero(n_, kZ);
+  PHt.setZero(n_, obs.innovation.size());
   for (const BlockJacobian& h : H) {
     Eigen::MatrixXd scratch;
     const Eigen::Ref<const Eigen::MatrixXd> P_b = BlockColumns(h.block, scratch);
-    WithDim(BlockDim(h.block), [&](auto D) {
-      const Eigen::Matrix<double, kZ, decltype(D)::value> J = h.J;
+    WithDim<kFixedZ<kZ>>(BlockDim(h.block), [&](auto D) {
+      const SmallMatrix<kZ, decltype(D)::value> J = h.J;
       PHt += P_b * J.transpose();
     });
   }
@@ -46,27 +53,27 @@ Eigen::Matrix<double, Eigen::Dynamic, kZ> BlockEkf::CovarianceTimesHt(
 
 // S = H (P Hᵀ) + R, reusing the P Hᵀ the update computed anyway.
 template <int kZ>
-Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFromPHt(
-    const Linearisation& obs, const Eigen::Matrix<double, Eigen::Dynamic, kZ>& PHt) const {
+SmallMatrix<kZ, kZ> BlockEkf::InnovationCovarianceFromPHt(
+    const Linearisation& obs, const TallMatrix<kZ>& PHt) const {
   const std::span<const BlockJacobian> H = obs.H.view();
-  const Eigen::Matrix<double, kZ, kZ> R = obs.R;
-  Eigen::Matrix<double, kZ, kZ> S;
+  const SmallMatrix<kZ, kZ> R = obs.R;
+  SmallMatrix<kZ, kZ> S;
   if (H.size() == 2) {
-    WithDims(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
+    WithDims<kFixedZ<kZ>>(BlockDim(H[0].block), BlockDim(H[1].block), [&](auto D0, auto D1) {
       constexpr int kD0 = decltype(D0)::value, kD1 = decltype(D1)::value;
-      const Eigen::Matrix<double, kZ, kD0> J_0 = H[0].J;
-      const Eigen::Matrix<double, kZ, kD1> J_1 = H[1].J;
-      S = J_0 * PHt.template middleRows<kD0>(BlockOffset(H[0].block)) +
-          J_1 * PHt.template middleRows<kD1>(BlockOffset(H[1].block)) + R;
+      const SmallMatrix<kZ, kD0> J_0 = H[0].J;
+      const SmallMatrix<kZ, kD1> J_1 = H[1].J;
+      S = J_0 * PHt.template middleRows<kD0>(BlockOffset(H[0].block), BlockDim(H[0].block)) +
+          J_1 * PHt.template middleRows<kD1>(BlockOffset(H[1].block), BlockDim(H[1].block)) + R;
     });
     return S;
   }
   S = R;
   for (const BlockJacobian& h : H) {
-    WithDim(BlockDim(h.block), [&](auto D) {
+    WithDim<kFixedZ<kZ>>(BlockDim(h.block), [&](auto D) {
       constexpr int kD = decltype(D)::value;
-      const Eigen::Matrix<double, kZ, kD> J = h.J;
-      S += J * PHt.template middleRows<kD>(BlockOffset(h.block));
+      const SmallMatrix<kZ, kD> J = h.J;
+      S += J * PHt.template middleRows<kD>(BlockOffset(h.block), BlockDim(h.block));
     });
   }
   return S;
@@ -77,17 +84,18 @@ Eigen::Matrix<double, kZ, kZ> BlockEkf::InnovationCovarianceFromPHt(
 // mean moves by K ν = V L⁻¹ ν; V joins the deferred factor U.
 template <int kZ>
 bool BlockEkf::UpdateFixed(const Linearisation& obs) {
-  using MatrixZ = Eigen::Matrix<double, kZ, kZ>;
+  using MatrixZ = SmallMatrix<kZ, kZ>;
   if (m_ == 0) StartPoseCache();
-  const Eigen::Matrix<double, Eigen::Dynamic, kZ> PHt = CovarianceTimesHt<kZ>(obs);
+  const TallMatrix<kZ> PHt = CovarianceTimesHt<kZ>(obs);
   const MatrixZ S = InnovationCovarianceFromPHt<kZ>(obs, PHt);
   const Eigen::LLT<MatrixZ> llt(S);
   if (llt.info() != Eigen::Success) return false;  // never for R > 0; guard anyway
-  const MatrixZ L_inv_t = llt.matrixL().solve(MatrixZ::Identity()).transpose();
-  if (m_ + kZ > U_.cols()) U_.conservativeResize(Eigen::NoChange, 2 * U_.cols());
-  auto V = U_.block(0, m_, n_, kZ);
+  const int z = static_cast<int>(obs.innovation.size());
+  const MatrixZ L_inv_t = llt.matrixL().solve(MatrixZ::Identity(z, z)).transpose();
+  if (m_ + z > U_.cols()) U_.conservativeResize(Eigen::NoChange, std::max<Eigen::Index>(2 * U_.cols(), m_ + z));
+  auto V = U_.block(0, m_, n_, z);
   V.noalias() = PHt * L_inv_t;
-  const Eigen::Matrix<double, kZ, 1> nu = obs.innovation;
+  const SmallMatrix<kZ, 1> nu = obs.innovation;
   x_.head(n_) += V * (L_inv_t.transpose() * nu);
   WrapAngles();
   // Nearly every observation reads pose columns: keep them current in O(n) rather than
@@ -96,7 +104,7 @@ bool BlockEkf::UpdateFixed(const Linearisation& obs) {
     pose_cols_.block(0, 3 * pose_slot_[p], n_, 3).noalias() -=
         V * V.template middleRows<3>(BlockOffset(p)).transpose();
   }
-  m_ += kZ;
+  m_ += z;
   return true;
 }
 
@@ -105,8 +113,8 @@ bool BlockEkf::Update(const Linearisation& obs) {
     if (const std::optional<Linearisation> local = ToArea(obs)) return area_->local.Update(*local);
     Synchronise();
   }
-  return WithDim(static_cast<int>(obs.innovation.size()),
-                 [&](auto Z) { return UpdateFixed<decltype(Z)::value>(obs); });
+  return WithMeasurementDim(static_cast<int>(obs.innovation.size()),
+                            [&](auto Z) { return UpdateFixed<decltype(Z)::value>(obs); });
 }
 
 }  // namespace slamkit

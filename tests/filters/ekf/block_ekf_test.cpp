@@ -89,6 +89,50 @@ class PositionFixModel final : public TestModel {
   }
 };
 
+// The range alone to a point (a 1-D measurement: BlockEkf's dynamic-size path).
+class RangeOnlyModel final : public TestModel {
+ public:
+  int MeasurementDim() const override { return 1; }
+  Eigen::VectorXd Eval(const Means& means, Jacobians* J) const override {
+    const Eigen::Vector2d d = means[1] - means[0].head<2>();
+    const double r = d.norm();
+    Eigen::Matrix<double, 1, 3> J_z_x;
+    J_z_x << -d.x() / r, -d.y() / r, 0.0;
+    if (J) *J = {J_z_x, Eigen::Matrix<double, 1, 2>(d.x() / r, d.y() / r)};
+    return Eigen::Matrix<double, 1, 1>(r);
+  }
+};
+
+// Pose B seen from pose A as a whole pose, A⁻¹ ∘ B (a 3-D measurement).
+class RelativePoseModel final : public TestModel {
+ public:
+  int MeasurementDim() const override { return 3; }
+  std::vector<int> AngleRows() const override { return {2}; }
+  Eigen::VectorXd Eval(const Means& means, Jacobians* J) const override {
+    const Pose2 a(means[0]), b(means[1]);
+    Eigen::Matrix<double, 2, 3> J_t_a;
+    Eigen::Matrix2d J_t_b;
+    const Eigen::Vector2d t = a.TransformTo(b.translation(), &J_t_a, &J_t_b);
+    Eigen::Matrix3d J_z_a = Eigen::Matrix3d::Zero(), J_z_b = Eigen::Matrix3d::Zero();
+    J_z_a.topRows<2>() = J_t_a;
+    J_z_a(2, 2) = -1.0;
+    J_z_b.topLeftCorner<2, 2>() = J_t_b;
+    J_z_b(2, 2) = 1.0;
+    if (J) *J = {J_z_a, J_z_b};
+    return Eigen::Vector3d(t.x(), t.y(), WrapAngle(b.theta() - a.theta()));
+  }
+};
+
+// A scalar block (a 1-D kind, e.g. a sensor bias) measured directly.
+class ScalarFixModel final : public TestModel {
+ public:
+  int MeasurementDim() const override { return 1; }
+  Eigen::VectorXd Eval(const Means& means, Jacobians* J) const override {
+    if (J) *J = {Eigen::Matrix<double, 1, 1>::Identity()};
+    return means[0];
+  }
+};
+
 // A line in the world frame, (ρ, α): the points p with pᵀ(cos α, sin α) = ρ. Seen from pose
 // (x, y, θ) it is (ρ − x cos α − y sin α, α − θ). α is an angle, wrapped by the filter.
 class LineModel final : public TestModel {
@@ -377,6 +421,47 @@ TEST(BlockEkf, TwoPoseBlocksWithVehicleVehicleObservationEqualDenseEkf) {
             R_xy);
   EXPECT_TRUE(m.ekf.HasPendingDowndate());
   m.ExpectEqual("in the step");
+  m.ekf.ApplyPendingDowndate();
+  m.ExpectEqual("after the step");
+}
+
+// Measurements other than 2-D and blocks other than 2-D or 3-D take BlockEkf's dynamic-size
+// path (internal::WithDim): the same results as the dense filter.
+TEST(BlockEkf, OneAndThreeDimensionalMeasurementsAndAScalarBlockEqualDenseEkf) {
+  const RangeBearingModel sensor;
+  Mirror m;
+  const int point_kind = m.ekf.RegisterKind({2, {}, false});
+  const int scalar_kind = m.ekf.RegisterKind({1, {}, false});
+  const PointLandmarkModel points(sensor, point_kind, 5.0);
+  const RangeOnlyModel range;
+  const RelativePoseModel relative;
+  const ScalarFixModel scalar;
+  const OdometryModel motion;
+  const Eigen::Matrix2d R_rb = Eigen::Vector2d(0.05 * 0.05, 0.01 * 0.01).asDiagonal();
+  auto eval = [](const TestModel& model) {
+    return [&model](const Means& means, Jacobians* J) { return model.Eval(means, J); };
+  };
+  m.AddBlock(kPoseKind, Eigen::Vector3d(0.0, 0.0, 0.3), Eigen::Vector3d(0.1, 0.1, 0.01).asDiagonal());
+  const int l = m.Augment(points, 0, {5.0, 0.2}, R_rb, DenseInvertRangeBearing);
+  const int b = m.ekf.NumBlocks();
+  m.AddBlock(kPoseKind, Eigen::Vector3d(4.0, 1.0, 2.0), Eigen::Vector3d(0.2, 0.3, 0.02).asDiagonal());
+  const int bias = m.ekf.NumBlocks();
+  m.AddBlock(scalar_kind, Eigen::Matrix<double, 1, 1>(0.5), Eigen::Matrix<double, 1, 1>(0.09));
+  m.PredictPose(0, motion, Odo(0.4, 0.0, 0.1));
+  m.Observe(range, eval(range), {0, l}, Eigen::Matrix<double, 1, 1>(5.3),
+            Eigen::Matrix<double, 1, 1>(0.01));
+  const Eigen::VectorXd rel = relative.Eval({m.ekf.Mean(0), m.ekf.Mean(b)}, nullptr);
+  m.Observe(relative, eval(relative), {0, b}, rel + Eigen::Vector3d(0.2, -0.1, 0.05),
+            Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  m.Observe(scalar, eval(scalar), {bias}, Eigen::Matrix<double, 1, 1>(0.35),
+            Eigen::Matrix<double, 1, 1>(0.04));
+  m.ExpectEqual("in the step");
+  EXPECT_NEAR(m.ekf.MahalanobisSquared(Linearise(scalar, m.ekf, std::vector<int>{bias},
+                                                 Eigen::Matrix<double, 1, 1>(0.35),
+                                                 Eigen::Matrix<double, 1, 1>(0.04))),
+              std::pow(0.35 - m.ekf.Mean(bias)[0], 2) /
+                  (m.ekf.CovarianceBlock(bias, bias)(0, 0) + 0.04),
+              1e-12);
   m.ekf.ApplyPendingDowndate();
   m.ExpectEqual("after the step");
 }

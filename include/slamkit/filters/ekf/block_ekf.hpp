@@ -22,6 +22,16 @@ inline constexpr int kMaxBlockDim = 3;
 inline constexpr int kMaxObservedBlocks = 4;
 
 using BlockVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxBlockDim, 1>;
+// R × C with R and C fixed, or Eigen::Dynamic bounded by kMaxBlockDim: the typed update's small
+// matrices (see block_dispatch.hpp), whose products stay coefficient-based either way.
+template <int R, int C>
+using SmallMatrix =
+    Eigen::Matrix<double, R, C, 0, (R == Eigen::Dynamic ? kMaxBlockDim : R),
+                  (C == Eigen::Dynamic ? kMaxBlockDim : C)>;
+// n × C, C as in SmallMatrix: P Hᵀ and the like.
+template <int C>
+using TallMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, C, 0, Eigen::Dynamic, (C == Eigen::Dynamic ? kMaxBlockDim : C)>;
 using BlockMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxBlockDim, kMaxBlockDim>;
 
@@ -222,27 +232,28 @@ class BlockEkf {
   // The current columns of block `block`: cached for pose blocks while downdates are pending.
   // A view of the cache, or of `scratch` holding the gathered columns.
   Eigen::Ref<const Eigen::MatrixXd> BlockColumns(int block, Eigen::MatrixXd& scratch) const;
-  // Rows [r, r+R) × columns [c, c+C) of the current covariance, r + R <= c or r == c.
+  // Rows [r, r+rows) × columns [c, c+cols) of the current covariance, r + rows <= c or r == c;
+  // R and C are rows and cols, or Eigen::Dynamic (internal::WithDim).
   template <int R, int C>
-  Eigen::Matrix<double, R, C> CurrentBlock(int r, int c) const;
+  SmallMatrix<R, C> CurrentBlock(int r, int c, int rows, int cols) const;
   template <int R, int C>
-  Eigen::Matrix<double, R, C> CurrentBlockOf(int a, int b) const;
+  SmallMatrix<R, C> CurrentBlockOf(int a, int b) const;
   template <int kZ, int kD0, int kD1>
-  Eigen::Matrix<double, kZ, kZ> TwoBlockS(const Eigen::Matrix<double, kD0, kD0>& P_00, int a,
-                                          int b, const Eigen::Matrix<double, kZ, kD0>& J_0,
-                                          const Eigen::Matrix<double, kZ, kD1>& J_1,
-                                          const Eigen::Matrix<double, kZ, kZ>& R) const;
+  SmallMatrix<kZ, kZ> TwoBlockS(const SmallMatrix<kD0, kD0>& P_00, int a,
+                                          int b, const SmallMatrix<kZ, kD0>& J_0,
+                                          const SmallMatrix<kZ, kD1>& J_1,
+                                          const SmallMatrix<kZ, kZ>& R) const;
   template <int kZ>
   bool UpdateFixed(const Linearisation& obs);
   template <int kZ>
-  Eigen::Matrix<double, Eigen::Dynamic, kZ> CovarianceTimesHt(const Linearisation& obs) const;
+  TallMatrix<kZ> CovarianceTimesHt(const Linearisation& obs) const;
   template <int kZ>
-  Eigen::Matrix<double, kZ, kZ> InnovationCovarianceFixed(const Linearisation& obs) const;
+  SmallMatrix<kZ, kZ> InnovationCovarianceFixed(const Linearisation& obs) const;
   template <int kZ>
-  Eigen::Matrix<double, kZ, kZ> InnovationCovarianceFromPHt(
-      const Linearisation& obs, const Eigen::Matrix<double, Eigen::Dynamic, kZ>& PHt) const;
+  SmallMatrix<kZ, kZ> InnovationCovarianceFromPHt(
+      const Linearisation& obs, const TallMatrix<kZ>& PHt) const;
   template <int kD>
-  void CachePoseRowsOfNewBlock(std::span<const BlockJacobian> J_new_blocks);
+  void CachePoseRowsOfNewBlock(int dim, std::span<const BlockJacobian> J_new_blocks);
   template <int kD>
   void AugmentFixed(const BlockVector& mean, std::span<const BlockJacobian> J_new_blocks,
                     const BlockMatrix& J_new_z, const BlockMatrix& R);
