@@ -64,6 +64,7 @@ Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& 
     pass.estimate.push_back({double(step.pose_index), slam.PoseEstimate()});
   }
   // Before anything is taken from the state: a run gone numerically bad gives no map of NaN.
+  slam.Flush();
   slam.CheckOutputHealth();
   return pass;
 }
@@ -196,6 +197,7 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   IsamRunResult out;
   out.estimate = std::move(pass.estimate);
   out.map = filter.Map();
+  out.counters = filter.Counters();
   out.sightings = pass.sightings;
   out.dropped = pass.dropped;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,5 +1,6 @@
 #include "slamkit/runners/landmark/outputs.hpp"
 
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -51,13 +52,18 @@ std::string IndentedEntry(const nlohmann::json& json) {
   return out;
 }
 
+// A filter's cost figures by name ({} for a filter without any).
+nlohmann::json CountersJson(std::span<const FilterCounter> counters) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const FilterCounter& c : counters) json[c.name] = c.value;
+  return json;
+}
+
 }  // namespace
 
 nlohmann::json RunSummaryJson(int k, const RunSummary& r) {
-  nlohmann::json counters = nlohmann::json::object();
-  for (const FilterCounter& c : r.counters) counters[c.name] = c.value;
   return {{"run", k},
-          {"filter_counters", counters},
+          {"filter_counters", CountersJson(r.counters)},
           {"position_rmse_m", r.rmse.position_m},
           {"heading_rmse_rad", r.rmse.heading_rad},
           {"anees", r.anees},
@@ -171,6 +177,7 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
       {"odometry_covariance_scale", params.odometry_covariance_scale},
       {"sighting_covariance_scale", params.sighting_covariance_scale},
       {"wall_time_s", r.wall_time_s},
+      {"filter_counters", CountersJson(r.counters)},
       {"params", IsamParamsJson(params)}};
   if (params.score_against_merged_reference) {
     metrics["association_agreement_merged"] = r.association_agreement_merged;

@@ -99,6 +99,7 @@ struct IsamRunResult {
   // Why the log could not be smoothed (the run is kept; smoothed_reference is then unset).
   std::string smoothed_reference_failure;
   double wall_time_s = 0.0;  // the SLAM pass alone
+  std::vector<FilterCounter> counters;  // the filter's (LandmarkSlamFilter::Counters)
 };
 
 // EKF-SLAM (params.ekf) with the odometry and relative-point models.
