@@ -44,10 +44,11 @@ Lap MakeLap(int landmarks) {
 
 // A filter that has mapped every landmark (each added once from the true start pose, so the map
 // is consistent with the sightings the drive makes).
-EkfSlam MakeFilter(const Lap& lap, EkfUpdateMode update) {
+EkfSlam MakeFilter(const Lap& lap, EkfUpdateMode update, double hysteresis) {
   EkfSlamParams params;
   params.association_method = AssociationMethod::kKnown;
   params.update = update;
+  params.active_area.hysteresis_fraction = hysteresis;
   params.initial_landmark_capacity = static_cast<int>(lap.world.size());
   EkfSlam slam(params, std::make_unique<OdometryModel>(),
                std::make_unique<RangeBearingModel>(lap.sensor.params()));
@@ -68,7 +69,8 @@ EkfSlam MakeFilter(const Lap& lap, EkfUpdateMode update) {
 template <EkfUpdateMode kUpdate>
 void BM_EkfLapStep(benchmark::State& state) {
   const Lap lap = MakeLap(static_cast<int>(state.range(0)));
-  EkfSlam slam = MakeFilter(lap, kUpdate);
+  // Second argument: the area's hysteresis in hundredths of the sensor's range.
+  EkfSlam slam = MakeFilter(lap, kUpdate, 0.01 * static_cast<double>(state.range(1)));
   Pose2 truth(lap.circle_m, 0.0, std::numbers::pi / 2);
   const Pose2 move(kStepM, 0.0, kStepM / lap.circle_m);
   Rng rng(34);
@@ -99,9 +101,14 @@ void BM_EkfLapStep(benchmark::State& state) {
 }
 
 BENCHMARK_TEMPLATE(BM_EkfLapStep, EkfUpdateMode::kDense)
-    ->Name("BM_EkfLapStepDense")->Arg(500)->Arg(2000)->Unit(benchmark::kMillisecond);
+    ->Name("BM_EkfLapStepDense")
+    ->Args({500, 50})
+    ->Args({2000, 50})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_EkfLapStep, EkfUpdateMode::kCompressed)
-    ->Name("BM_EkfLapStepCompressed")->Arg(500)->Arg(2000)->Unit(benchmark::kMillisecond);
+    ->Name("BM_EkfLapStepCompressed")
+    ->ArgsProduct({{500, 2000}, {10, 25, 50, 100}})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace slamkit
