@@ -111,37 +111,35 @@ void BlockEkf::Synchronise() {
   if (!area_) return;
   std::unique_ptr<CompressedArea> area = std::move(area_);
   spare_area_ = nullptr;
-  BlockEkf& local = area->local;
-  local.ApplyPendingDowndate();
-  const int n0 = area->n0, a0 = area->a0, n = n_;
-  // C over the whole of the old state, with A₀'s rows zero so that they stay as they are.
-  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n0, a0);
-  for (int b = 0; b < static_cast<int>(area->local_of.size()); ++b) {
-    if (area->local_of[b] < 0 && blocks_[b].offset < n0) {
-      C.middleRows(blocks_[b].offset, blocks_[b].dim) = area->CrossRows(*this, b);
-    }
-  }
-  const Eigen::MatrixXd psi = area->Psi();
-  x_.head(n0) += C * area->Theta();
-  n_ = n0;  // the triangle update below and the growth see the old state
-  SubtractFromTriangle(C * psi, C);
+  area->local.ApplyPendingDowndate();
+  const int n = n_;
+  const Eigen::MatrixXd C = area->CrossRowsOfAll(*this);
+  x_.head(area->n0) += C * area->Theta();
+  n_ = area->n0;  // the triangle update and the growth see the old state
+  SubtractFromTriangle(C * area->Psi(), C);
+  if (n > x_.size()) Reserve(n);
   n_ = n;
-  if (n > x_.size()) {
-    n_ = n0;
-    Reserve(n);
-    n_ = n;
-  }
-  // The area's blocks (A₀ and those added since): their entries in the whole state.
+  WriteAreaBack(*area, C);
+  pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
+  WrapAngles();
+  NormaliseBlocks();
+  spare_area_ = std::move(area);
+}
+
+// The area's blocks (A₀ and those added since) from its filter: their means, their covariance
+// and their cross-covariance φ Cᵀ with the rest.
+void BlockEkf::WriteAreaBack(const CompressedArea& area, const Eigen::MatrixXd& C) {
+  const BlockEkf& local = area.local;
   std::vector<int> local_index, whole_index;
   for (int b = 0; b < NumBlocks(); ++b) {
-    const int lb = area->local_of[b];
+    const int lb = area.local_of[b];
     if (lb < 0) continue;
     for (int r = 0; r < blocks_[b].dim; ++r) {
       local_index.push_back(local.BlockOffset(lb) + r);
       whole_index.push_back(blocks_[b].offset + r);
     }
   }
-  const int a = static_cast<int>(local_index.size());
+  const int a = static_cast<int>(local_index.size()), a0 = area.a0, n0 = area.n0;
   // The area's filter has nothing pending: its triangle is its covariance.
   const auto local_cov = [&local](int p, int q) { return p <= q ? local.P_(p, q) : local.P_(q, p); };
   Eigen::MatrixXd phi(a, a0);
@@ -149,24 +147,19 @@ void BlockEkf::Synchronise() {
     for (int i = 0; i < a; ++i) phi(i, j) = local_cov(local_index[i], a0 + j);
   }
   const Eigen::MatrixXd cross = phi * C.transpose();  // a × n0; zero against A₀
-  std::vector<char> in_area(n, 0);
+  std::vector<char> in_area(n_, 0);
   for (const int w : whole_index) in_area[w] = 1;
   for (int i = 0; i < a; ++i) {
     const int w = whole_index[i];
     x_[w] = local.x_[local_index[i]];
     for (int j = 0; j < n0; ++j) {
-      if (in_area[j]) continue;
-      (w <= j ? P_(w, j) : P_(j, w)) = cross(i, j);
+      if (!in_area[j]) (w <= j ? P_(w, j) : P_(j, w)) = cross(i, j);
     }
     for (int k = 0; k < a; ++k) {
       const int v = whole_index[k];
       if (w <= v) P_(w, v) = local_cov(local_index[i], local_index[k]);
     }
   }
-  pose_cols_ = Eigen::MatrixXd::Zero(x_.size(), 3 * static_cast<int>(pose_blocks_.size()));
-  WrapAngles();
-  NormaliseBlocks();
-  spare_area_ = std::move(area);
 }
 
 std::optional<Linearisation> BlockEkf::ToArea(const Linearisation& obs) const {

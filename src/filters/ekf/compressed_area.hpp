@@ -41,6 +41,17 @@ struct BlockEkf::CompressedArea {
     }
     return rows;
   }
+  // C over the whole state at compression (n0 × a0), A₀'s rows zero.
+  Eigen::MatrixXd CrossRowsOfAll(const BlockEkf& whole) const {
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n0, a0);
+    for (int b = 0; b < static_cast<int>(local_of.size()); ++b) {
+      const Block& block = whole.blocks_[b];
+      if (local_of[b] < 0 && block.offset < n0) {
+        C.middleRows(block.offset, block.dim) = CrossRows(whole, b);
+      }
+    }
+    return C;
+  }
   Eigen::VectorXd Theta() const { return local.x_.segment(a0, a0); }
   Eigen::MatrixXd Psi() const { return -local.CurrentRange(a0, a0, a0, a0); }
   // φ's rows of local block `lb`: Cov(lb, Z).

@@ -220,6 +220,8 @@ class BlockEkf {
                                                bool check_psd) const;
   // `obs` with its blocks renamed to the area's filter's, if they are all active.
   std::optional<Linearisation> ToArea(const Linearisation& obs) const;
+  // Synchronise()'s last part: the area's blocks written back, given C (see compressed_area.hpp).
+  void WriteAreaBack(const CompressedArea& area, const Eigen::MatrixXd& C);
   // Block `block`'s bookkeeping (offset n_, angles, pose slot) without touching the storage.
   int RecordBlock(int kind);
   // The stored triangle P ← P − A Bᵀ (A Bᵀ symmetric), in fixed column blocks run in parallel.
