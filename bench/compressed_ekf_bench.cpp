@@ -3,7 +3,8 @@
 // side grows with N (constant density), seeing those within 10 m. One iteration is one step
 // (prediction and the step's sightings); the compressed filter's global updates fall inside the
 // iterations as the robot leaves its areas, so the mean includes them. Compare the two at the
-// same N in one run (`--benchmark_filter=BM_EkfLap`).
+// same N in one run (`--benchmark_filter=BM_EkfLap`). N = 10,000 holds two 20,003² covariances
+// (3.2 GB each) and needs a long --benchmark_min_time for the compressed run to span its areas.
 
 #include <benchmark/benchmark.h>
 
@@ -104,10 +105,12 @@ BENCHMARK_TEMPLATE(BM_EkfLapStep, EkfUpdateMode::kDense)
     ->Name("BM_EkfLapStepDense")
     ->Args({500, 50})
     ->Args({2000, 50})
+    ->Args({10000, 50})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_TEMPLATE(BM_EkfLapStep, EkfUpdateMode::kCompressed)
     ->Name("BM_EkfLapStepCompressed")
     ->ArgsProduct({{500, 2000}, {10, 25, 50, 100}})
+    ->Args({10000, 50})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
