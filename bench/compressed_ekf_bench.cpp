@@ -110,7 +110,7 @@ BENCHMARK_TEMPLATE(BM_EkfLapStep, EkfUpdateMode::kDense)
 BENCHMARK_TEMPLATE(BM_EkfLapStep, EkfUpdateMode::kCompressed)
     ->Name("BM_EkfLapStepCompressed")
     ->ArgsProduct({{500, 2000}, {10, 25, 50, 100}})
-    ->Args({10000, 50})
+    ->ArgsProduct({{10000}, {50, 100}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
