@@ -4,70 +4,28 @@
 // ones met again on every lap. A slow test (Release only: `ctest -L slow`).
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <numbers>
 #include <vector>
 
-#include "common/ordered_draws.hpp"
-#include "slamkit/core/rng.hpp"
-#include "slamkit/filters/ekf_slam/ekf_slam.hpp"
-#include "slamkit/models/odometry.hpp"
-#include "slamkit/models/range_bearing.hpp"
+#include "filters/compressed_circle.hpp"
 
 namespace slamkit {
 namespace {
 
-double RelativeDiff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
-}
-
-EkfSlam MakeFilter(EkfUpdateMode update, const RangeBearingParams& sensor,
-                   const OdometryParams& odometry) {
-  EkfSlamParams params;
-  params.update = update;
-  params.association.gate_chi2 = 9.21;
-  params.association.new_landmark_chi2 = 30.0;
-  params.association_margin_m = 1.0;
-  EkfSlam slam(params, std::make_unique<OdometryModel>(odometry),
-               std::make_unique<RangeBearingModel>(sensor));
-  slam.Reset(Pose2(40.0, 0.0, std::numbers::pi / 2));
-  return slam;
-}
+using testing::RelativeDiff;
 
 TEST(CompressedEkfSlam, EqualsTheDenseFilterOverFiveThousandSteps) {
-  constexpr int kSteps = 5000;
-  constexpr double kStepM = 0.2, kCircleM = 40.0;  // 1,257 steps a lap: 4 laps
+  // 4 laps of a 40 m circle in 0.2 m steps, a 10 m 60° sensor, a jittered 2.2 m grid over
+  // 104 m × 104 m: about 520 landmarks within sight of the circle.
   const RangeBearingParams sensor{.max_range_m = 10.0, .fov_rad = std::numbers::pi / 3,
                                   .sigma_range_m = 0.05, .sigma_bearing_rad = 0.005};
-  const OdometryParams odometry{.sigma_xy_m = 0.01, .sigma_theta_rad = 0.001};
-  const RangeBearingModel truth_sensor(sensor);
-  // A jittered 2.2 m grid over 104 m × 104 m: about 520 landmarks within sight of the circle.
-  Rng rng(32);
-  std::vector<Eigen::Vector2d> world;
-  for (double x = -52.0; x <= 52.0; x += 2.2) {
-    for (double y = -52.0; y <= 52.0; y += 2.2) {
-      world.push_back(Eigen::Vector2d(x, y) + testing::UniformVector2(rng, -0.8, 0.8, -0.8, 0.8));
-    }
-  }
-  EkfSlam dense = MakeFilter(EkfUpdateMode::kDense, sensor, odometry);
-  EkfSlam compressed = MakeFilter(EkfUpdateMode::kCompressed, sensor, odometry);
-  Pose2 truth(kCircleM, 0.0, std::numbers::pi / 2);
+  testing::CircleDrive drive(40.0, 0.2, 2.2, 52.0, sensor,
+                             {.sigma_xy_m = 0.01, .sigma_theta_rad = 0.001});
+  EkfSlam dense = drive.MakeFilter(EkfUpdateMode::kDense);
+  EkfSlam compressed = drive.MakeFilter(EkfUpdateMode::kCompressed);
   std::vector<PointObservation> scan;
-  for (int step = 1; step <= kSteps; ++step) {
-    const Pose2 move(kStepM, 0.0, kStepM / kCircleM);
-    truth = truth.Compose(move);
-    Control u(3);
-    u << move.x() + rng.Normal(0, odometry.sigma_xy_m), move.y() + rng.Normal(0, odometry.sigma_xy_m),
-        move.theta() + rng.Normal(0, odometry.sigma_theta_rad);
-    scan.clear();
-    for (const Eigen::Vector2d& l : world) {
-      if (!truth_sensor.IsVisible(truth, l)) continue;
-      PointObservation obs;
-      obs.z = truth_sensor.Predict(truth, l) +
-              testing::NormalVector2(rng, sensor.sigma_range_m, sensor.sigma_bearing_rad);
-      obs.R = truth_sensor.NoiseCovariance();
-      scan.push_back(obs);
-    }
+  for (int step = 1; step <= 5000; ++step) {
+    const Control u = drive.Step(scan);
     dense.Predict(u, 0.1);
     compressed.Predict(u, 0.1);
     const std::vector<AssociationDecision> expected = dense.Update(scan);
@@ -89,7 +47,7 @@ TEST(CompressedEkfSlam, EqualsTheDenseFilterOverFiveThousandSteps) {
   EXPECT_GT(stats.global_updates, 100);
   EXPECT_LT(stats.max_active_size, compressed.StateSize() / 3);
   // The run's pose error stays within what a filter that maps its surroundings keeps.
-  EXPECT_LT((compressed.pose().translation() - truth.translation()).norm(), 1.0);
+  EXPECT_LT((compressed.pose().translation() - drive.truth().translation()).norm(), 1.0);
 }
 
 }  // namespace
