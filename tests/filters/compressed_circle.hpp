@@ -1,5 +1,7 @@
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +19,16 @@ namespace slamkit::testing {
 
 inline double RelativeDiff(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return (a - b).cwiseAbs().maxCoeff() / std::max(1.0, b.cwiseAbs().maxCoeff());
+}
+
+// The compressed filter's decisions for one scan against the dense filter's.
+inline void ExpectSameDecisions(const std::vector<AssociationDecision>& got,
+                                const std::vector<AssociationDecision>& expected, int step) {
+  ASSERT_EQ(got.size(), expected.size()) << "step " << step;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_EQ(got[i].kind, expected[i].kind) << "step " << step << ", sighting " << i;
+    ASSERT_EQ(got[i].landmark, expected[i].landmark) << "step " << step << ", sighting " << i;
+  }
 }
 
 // A robot driving laps of a circle of `circle_m` around the origin, in steps of `step_m`, among

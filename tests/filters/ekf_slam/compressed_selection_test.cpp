@@ -38,11 +38,8 @@ void ExpectSameRun(bool entropy, int steps) {
     compressed.Predict(u, 0.1);
     const std::vector<AssociationDecision> expected = dense.Update(scan);
     const std::vector<AssociationDecision> got = compressed.Update(scan);
-    ASSERT_EQ(got.size(), expected.size());
-    for (std::size_t i = 0; i < got.size(); ++i) {
-      ASSERT_EQ(got[i].kind, expected[i].kind) << "step " << step << ", sighting " << i;
-      ASSERT_EQ(got[i].landmark, expected[i].landmark) << "step " << step << ", sighting " << i;
-    }
+    testing::ExpectSameDecisions(got, expected, step);
+    if (::testing::Test::HasFatalFailure()) return;
     ASSERT_EQ(compressed.LastSelectionStats().applied, dense.LastSelectionStats().applied)
         << "step " << step;
     candidates += dense.LastSelectionStats().candidates;
