@@ -19,5 +19,6 @@ void RegisterStudy(CLI::App& app, int& exit_code);
 void RegisterCoop(CLI::App& app, int& exit_code);
 void RegisterMapDiff(CLI::App& app, int& exit_code);
 void RegisterPoseGraph(CLI::App& app, int& exit_code);
+void RegisterLocalize(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -48,6 +48,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterCoop(app, exit_code);
   slamkit::app::RegisterMapDiff(app, exit_code);
   slamkit::app::RegisterPoseGraph(app, exit_code);
+  slamkit::app::RegisterLocalize(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,39 @@
+#pragma once
+
+// The last centimetres of a localiser's pose: the scan matched against the saved map from the
+// particle filter's estimate, as the grid filter tracks its scans between updates (the same
+// matcher and gates). The particle filter stays what keeps the robot localised; this only
+// sharpens the pose it reports.
+
+#include "slamkit/core/laser_scan.hpp"
+#include "slamkit/core/pose2.hpp"
+#include "slamkit/filters/grid/scan_matcher.hpp"
+#include "slamkit/maps/occupancy_grid.hpp"
+
+namespace slamkit {
+
+struct MapScanRefinerParams {
+  bool enabled = true;
+  ScanMatcherParams matcher;         // the grid filter's tracking matcher (TrackingMatcherParams)
+  double max_correction_m = 0.1;     // a match further than this from the estimate is not taken
+  double max_correction_rad = 0.1;
+  double usable_range_m = 50.0;
+};
+
+// The defaults: the grid filter's tracking settings (RbpfGridSlamParams).
+MapScanRefinerParams DefaultRefinerParams();
+
+class MapScanRefiner {
+ public:
+  MapScanRefiner(OccupancyGrid map, const MapScanRefinerParams& params);
+
+  // `estimate` moved to where `scan` matches the map, or `estimate` itself when the match is not
+  // accepted or moves it beyond the gates; `refined` (optional) says which.
+  Pose2 Refine(const LaserScan& scan, const Pose2& estimate, bool* refined = nullptr) const;
+
+ private:
+  OccupancyGrid map_;
+  MapScanRefinerParams params_;
+};
+
+}  // namespace slamkit

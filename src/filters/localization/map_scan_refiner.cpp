@@ -1,0 +1,38 @@
+#include "slamkit/filters/localization/map_scan_refiner.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "slamkit/filters/grid/rbpf_grid_slam.hpp"
+
+namespace slamkit {
+
+MapScanRefinerParams DefaultRefinerParams() {
+  const RbpfGridSlamParams grid;
+  MapScanRefinerParams params;
+  params.matcher = grid.tracking;
+  params.matcher.prior_sigma_xy_m = 0.0;
+  params.max_correction_m = grid.tracking_max_correction_m;
+  params.max_correction_rad = grid.tracking_max_correction_rad;
+  params.usable_range_m = grid.usable_range_m;
+  return params;
+}
+
+MapScanRefiner::MapScanRefiner(OccupancyGrid map, const MapScanRefinerParams& params)
+    : map_(std::move(map)), params_(params) {}
+
+Pose2 MapScanRefiner::Refine(const LaserScan& scan, const Pose2& estimate, bool* refined) const {
+  if (refined != nullptr) *refined = false;
+  if (!params_.enabled) return estimate;
+  const ScanPoints points = PrepareScan(scan, params_.usable_range_m, params_.matcher);
+  const MatchResult match = MatchScan(map_, points, estimate, params_.matcher);
+  const Pose2 correction = estimate.Between(match.pose);
+  if (!match.accepted || correction.translation().norm() > params_.max_correction_m ||
+      std::abs(correction.theta()) > params_.max_correction_rad) {
+    return estimate;
+  }
+  if (refined != nullptr) *refined = true;
+  return match.pose;
+}
+
+}  // namespace slamkit
