@@ -66,6 +66,8 @@ config::ParamTable LocalizationParamTable(LocalizationConfig& config) {
                    "sharpen each pose by matching the scan against the map"),
       Number("refine", "max_correction_m", &r.max_correction_m, kNonNeg, "m",
              "a match further than this from the estimate is not taken"),
+      Number("refine", "follow_gate_m", &r.follow_gate_m, kNonNeg, "m",
+             "match from the last refined pose while it is this near the filter's estimate"),
       Number("refine", "max_correction_rad", &r.max_correction_rad, kNonNeg, "rad",
              "nor one turned further than this"),
       WithFlag(config::Seed("", "seed", &m.seed, "random seed of the filter"), "--seed"),
@@ -98,6 +100,7 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
   const int n = static_cast<int>(log.scans.size());
   result.trajectory.reserve(n);
   double particle_sum = 0.0;
+  bool last_refined = false;
   for (int i = 0; i < n; ++i) {
     if (mcl.ProcessScan(log.scans[i])) {
       particle_sum += mcl.status().particles;
@@ -111,9 +114,17 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
     }
     Pose2 pose = mcl.CurrentPose();
     if (mcl.Converged()) {
+      std::optional<Pose2> followed;
+      if (last_refined) {
+        followed = result.trajectory.back().pose.Compose(
+            log.scans[i - 1].odometry.Between(log.scans[i].odometry));
+      }
       bool refined = false;
-      pose = refiner.Refine(log.scans[i], pose, &refined);
+      pose = refiner.Refine(log.scans[i], pose, followed, &refined);
       result.refined_scans += refined;
+      last_refined = refined;
+    } else {
+      last_refined = false;
     }
     result.trajectory.push_back({log.scans[i].t_s, pose});
     if (progress && (i % 200 == 0 || i + 1 == n)) progress(i + 1, n);

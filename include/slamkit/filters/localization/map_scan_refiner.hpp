@@ -5,6 +5,8 @@
 // matcher and gates). The particle filter stays what keeps the robot localised; this only
 // sharpens the pose it reports.
 
+#include <optional>
+
 #include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/filters/grid/scan_matcher.hpp"
@@ -18,6 +20,11 @@ struct MapScanRefinerParams {
   double max_correction_m = 0.1;     // a match further than this from the estimate is not taken
   double max_correction_rad = 0.1;
   double usable_range_m = 50.0;
+  // The match starts from the last refined pose moved by the odometry while that stays within
+  // this of the particle filter's estimate (else from the estimate): the matched poses then
+  // follow each other as the grid filter's tracking does, and the filter's estimate, which
+  // drifts where the map does not explain the scans, only catches them when they go astray.
+  double follow_gate_m = 1.0;
 };
 
 // The defaults: the grid filter's tracking settings (RbpfGridSlamParams).
@@ -30,6 +37,10 @@ class MapScanRefiner {
   // `estimate` moved to where `scan` matches the map, or `estimate` itself when the match is not
   // accepted or moves it beyond the gates; `refined` (optional) says which.
   Pose2 Refine(const LaserScan& scan, const Pose2& estimate, bool* refined = nullptr) const;
+  // The same from `followed` (the last refined pose moved by the odometry since) when that lies
+  // within follow_gate_m of `estimate`.
+  Pose2 Refine(const LaserScan& scan, const Pose2& estimate, const std::optional<Pose2>& followed,
+               bool* refined = nullptr) const;
 
  private:
   OccupancyGrid map_;
