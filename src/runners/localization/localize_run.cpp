@@ -68,6 +68,13 @@ config::ParamTable LocalizationParamTable(LocalizationConfig& config) {
              "a match further than this from the estimate is not taken"),
       Number("refine", "follow_gate_m", &r.follow_gate_m, kNonNeg, "m",
              "match from the last refined pose while it is this near the filter's estimate"),
+      Number("refine", "far_step_m", &r.far_step_m, kNonNeg, "m",
+             "a scan this far from the one before is matched as the grid filter's particles are"),
+      Number("refine", "far_step_rad", &r.far_step_rad, kNonNeg, "rad", "or turned this far"),
+      Number("refine", "far_max_correction_m", &r.far_max_correction_m, kNonNeg, "m",
+             "such a match further than this from the estimate is not taken"),
+      Number("refine", "far_max_correction_rad", &r.far_max_correction_rad, kNonNeg, "rad",
+             "nor one turned further than this"),
       Number("refine", "max_correction_rad", &r.max_correction_rad, kNonNeg, "rad",
              "nor one turned further than this"),
       WithFlag(config::Seed("", "seed", &m.seed, "random seed of the filter"), "--seed"),
@@ -114,13 +121,11 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
     }
     Pose2 pose = mcl.CurrentPose();
     if (mcl.Converged()) {
+      const Pose2 step = i > 0 ? log.scans[i - 1].odometry.Between(log.scans[i].odometry) : Pose2();
       std::optional<Pose2> followed;
-      if (last_refined) {
-        followed = result.trajectory.back().pose.Compose(
-            log.scans[i - 1].odometry.Between(log.scans[i].odometry));
-      }
+      if (last_refined) followed = result.trajectory.back().pose.Compose(step);
       bool refined = false;
-      pose = refiner.Refine(log.scans[i], pose, followed, &refined);
+      pose = refiner.Refine(log.scans[i], pose, followed, step, &refined);
       result.refined_scans += refined;
       last_refined = refined;
     } else {
