@@ -90,6 +90,10 @@ int RunLocalizeCommand(const LocalizeOptions& o) {
     fmt::print("  not converged at the end of the log (spread above {} m)\n",
                config.mcl.converged_spread_m);
   }
+  if (result.last_recovery_scan) {
+    fmt::print("  {} updates drew random particles (the scans unlikely), the last at scan {}\n",
+               result.recovery_updates, *result.last_recovery_scan);
+  }
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
   return ReportEvaluation(o.input, eval, o.out);

@@ -185,7 +185,8 @@ void MonteCarloLocalization::ResampleKld(const std::vector<double>& per_beam_log
                                                  params_.kld_quantile));
     if (int(next.size()) >= wanted) break;
   }
-  if (randoms > 0) w_slow_ = w_fast_ = 0.0;  // as AMCL: a burst, then the averages start over
+  // Not AMCL's reset of both averages after an injection: that restarts the long-term average at
+  // the lost robot's likelihood, and no further particles come while it stays lost.
   status_.random_fraction = double(randoms) / double(next.size());
   poses_ = std::move(next);
 }

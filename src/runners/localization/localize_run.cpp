@@ -88,6 +88,29 @@ LocalizationConfig LoadLocalizationConfig(const std::filesystem::path& path,
   return config;
 }
 
+namespace {
+
+// After an update at scan i: the particle counts and whether the filter is settled (converged and
+// drawing no random particles, which it does only while it finds the scans unlikely).
+void RecordUpdate(const MonteCarloLocalization& mcl, int i, double* particle_sum,
+                  LocalizationResult* result) {
+  const MclStatus& status = mcl.status();
+  *particle_sum += status.particles;
+  result->most_particles = std::max(result->most_particles, status.particles);
+  if (status.random_fraction > 0.0) {
+    ++result->recovery_updates;
+    result->last_recovery_scan = i;
+  }
+  if (!mcl.Converged() || status.random_fraction > 0.0) {
+    result->settled_scan.reset();
+    return;
+  }
+  if (!result->settled_scan) result->settled_scan = i;
+  if (!result->first_converged_scan) result->first_converged_scan = i;
+}
+
+}  // namespace
+
 LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& map,
                                    const LocalizationConfig& config,
                                    const std::optional<Pose2>& initial_pose,
@@ -98,39 +121,23 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
   OccupancyGridParams grid;
   grid.resolution_m = map.resolution_m;
   const MapScanRefiner refiner(OccupancyGridFromImage(map, config.field, grid), config.refine);
-  if (initial_pose) {
-    mcl.InitialiseAt(*initial_pose);
-  } else {
-    mcl.InitialiseGlobally();
-  }
+  initial_pose ? mcl.InitialiseAt(*initial_pose) : mcl.InitialiseGlobally();
   LocalizationResult result;
   const int n = static_cast<int>(log.scans.size());
-  result.trajectory.reserve(n);
   double particle_sum = 0.0;
   bool last_refined = false;
   for (int i = 0; i < n; ++i) {
-    if (mcl.ProcessScan(log.scans[i])) {
-      particle_sum += mcl.status().particles;
-      result.most_particles = std::max(result.most_particles, mcl.status().particles);
-      if (!mcl.Converged()) {
-        result.settled_scan.reset();
-      } else {
-        if (!result.settled_scan) result.settled_scan = i;
-        if (!result.first_converged_scan) result.first_converged_scan = i;
-      }
-    }
+    if (mcl.ProcessScan(log.scans[i])) RecordUpdate(mcl, i, &particle_sum, &result);
     Pose2 pose = mcl.CurrentPose();
+    bool refined = false;
     if (mcl.Converged()) {
       const Pose2 step = i > 0 ? log.scans[i - 1].odometry.Between(log.scans[i].odometry) : Pose2();
       std::optional<Pose2> followed;
       if (last_refined) followed = result.trajectory.back().pose.Compose(step);
-      bool refined = false;
       pose = refiner.Refine(log.scans[i], pose, followed, step, &refined);
-      result.refined_scans += refined;
-      last_refined = refined;
-    } else {
-      last_refined = false;
     }
+    result.refined_scans += refined;
+    last_refined = refined;
     result.trajectory.push_back({log.scans[i].t_s, pose});
     if (progress && (i % 200 == 0 || i + 1 == n)) progress(i + 1, n);
   }
@@ -160,6 +167,8 @@ nlohmann::json LocalizationMetrics(const LocalizationResult& result,
     m["settled_t_s"] = result.trajectory[*result.settled_scan].t_s;
   }
   if (result.first_converged_scan) m["first_converged_scan"] = *result.first_converged_scan;
+  m["recovery_updates"] = result.recovery_updates;
+  if (result.last_recovery_scan) m["last_recovery_scan"] = *result.last_recovery_scan;
   AddErrorMetrics(relations, reference, m);
   LocalizationConfig copy = config;
   m["params"] = config::ParamsJson(LocalizationParamTable(copy));

@@ -37,13 +37,18 @@ struct LocalizationResult {
   Trajectory trajectory;  // one pose per scan, in the map's frame
   int scans = 0;
   int updates = 0;
-  // The first scan after which the filter's spread stayed below converged_spread_m to the end
-  // of the log (unset: it never settled); and the first scan where it was below at all.
+  // The first scan after which the filter stayed converged (spread below converged_spread_m)
+  // and drew no random particle to the end of the log (unset: it never settled); and the first
+  // scan where it was converged at all.
   std::optional<int> settled_scan;
   std::optional<int> first_converged_scan;
   double mean_particles = 0.0;  // over the updates
   int most_particles = 0;
   int refined_scans = 0;  // scans whose pose the map match sharpened
+  // Updates that drew random particles (augmented MCL, when on: the filter found the scans
+  // unlikely, as when the robot is carried away) and the scan of the last one.
+  int recovery_updates = 0;
+  std::optional<int> last_recovery_scan;
   double wall_time_s = 0.0;
 };
 
