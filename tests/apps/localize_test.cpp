@@ -44,11 +44,9 @@ TEST(LocalizeCli, LocalisesTheLogOnTheMapTheGridCommandWrote) {
   EXPECT_TRUE(m["converged"].get<bool>());
   EXPECT_EQ(m["params"]["max_particles"], 20000);
   // Measured: grid 0.0257 m, localisation 0.0274 m (the 4,000-scan test in runners compares
-  // them closely); the raw odometry is at metres.
+  // them closely, where the raw odometry is metres off).
   EXPECT_LT(m["relations_trans_mean_m"].get<double>(),
             1.5 * g["relations_trans_mean_m"].get<double>());
-  EXPECT_LT(m["relations_trans_mean_m"].get<double>(),
-            0.1 * m["odometry_relations_trans_mean_m"].get<double>());
   const CliResult global = RunCli("localize " + LogArgs() + " --map " + map +
                                   " --global --out " + (dir / "global").string());
   ASSERT_EQ(global.exit_code, 0) << global.output;
