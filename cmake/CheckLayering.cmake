@@ -22,7 +22,7 @@ set(modules core models maps optim features filters planning sim io eval runners
 # family may include besides its own; `top` is the module's own folder, the interfaces that
 # runners take (LandmarkSlamFilter, GridSlam). A family not listed may include none.
 set(families_filters top association particles ekf selection ekf_slam fastslam grid features
-    cooperative graph)
+    cooperative graph localization)
 set(allowed_filters_top association grid graph)
 set(allowed_filters_selection ekf)
 set(allowed_filters_ekf_slam top association ekf selection)
@@ -31,12 +31,14 @@ set(allowed_filters_grid top particles)
 set(allowed_filters_features top association ekf selection ekf_slam)
 set(allowed_filters_cooperative top association ekf selection ekf_slam)
 set(allowed_filters_graph top grid)
-set(families_runners common landmark grid features cooperative graph)
+set(allowed_filters_localization particles grid)
+set(families_runners common landmark grid features cooperative graph localization)
 set(allowed_runners_landmark common)
 set(allowed_runners_grid common)
 set(allowed_runners_features common)
 set(allowed_runners_cooperative common landmark)
 set(allowed_runners_graph common)
+set(allowed_runners_localization common)
 # Public headers of these modules must not expose these libraries (metrics take plain data).
 set(forbidden_public_eval "nlohmann/" "yaml-cpp/")
 
