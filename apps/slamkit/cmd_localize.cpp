@@ -17,6 +17,7 @@
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/writers.hpp"
+#include "slamkit/report/figures.hpp"
 #include "slamkit/runners/localization/localize_run.hpp"
 
 namespace slamkit::app {
@@ -72,6 +73,15 @@ int RunLocalizeCommand(const LocalizeOptions& o) {
   const std::filesystem::path& dir = output.staging();
   WritePoseText(dir / "trajectory.txt", result.trajectory);
   WriteTumTrajectory(dir / "trajectory.tum", WithIncreasingTimes(result.trajectory));
+  // The localised path over the saved map, as `grid` draws its own map (map.png there).
+  MapSheetData figure;
+  figure.columns = 1;
+  figure.panel_px = 1200;
+  figure.panels.push_back(
+      {std::filesystem::path(o.input.log).filename().string() + " localised on " +
+           std::filesystem::path(o.map).filename().string(),
+       map, result.trajectory, {}});
+  WriteMapContactSheet(dir / "path.png", figure);
   nlohmann::json metrics =
       LocalizationMetrics(result, config, eval.relations ? &*eval.relations : nullptr,
                           eval.reference ? &*eval.reference : nullptr);

@@ -33,7 +33,7 @@ TEST(LocalizeCli, LocalisesTheLogOnTheMapTheGridCommandWrote) {
                              " --initial-pose 0,0,0 --out " + (dir / "tracked").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("converged at scan"), std::string::npos) << r.output;
-  for (const char* name : {"trajectory.txt", "trajectory.tum", "metrics.json"}) {
+  for (const char* name : {"trajectory.txt", "trajectory.tum", "path.png", "metrics.json"}) {
     EXPECT_TRUE(fs::exists(dir / "tracked" / name)) << name;
   }
   const auto metrics = [&](const char* run) {
