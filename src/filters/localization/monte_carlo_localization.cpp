@@ -162,7 +162,7 @@ void MonteCarloLocalization::ResampleKld(const std::vector<double>& per_beam_log
   if (params_.alpha_slow > 0.0) {
     w_slow_ = w_slow_ == 0.0 ? w_avg : w_slow_ + params_.alpha_slow * (w_avg - w_slow_);
     w_fast_ = w_fast_ == 0.0 ? w_avg : w_fast_ + params_.alpha_fast * (w_avg - w_fast_);
-    p_random = std::max(0.0, 1.0 - w_fast_ / w_slow_);
+    if (recovery_allowed_) p_random = std::max(0.0, 1.0 - w_fast_ / w_slow_);
   }
   std::vector<double> cumulative(weights.size());
   double total = 0.0;

@@ -9,6 +9,13 @@
 
 namespace slamkit {
 
+MclParams LocalizerMclParams() {
+  MclParams params;
+  params.alpha_slow = 0.001;
+  params.alpha_fast = 0.1;
+  return params;
+}
+
 config::ParamTable LocalizationParamTable(LocalizationConfig& config) {
   using config::Bound;
   using config::Integer;
@@ -50,6 +57,8 @@ config::ParamTable LocalizationParamTable(LocalizationConfig& config) {
              "augmented MCL's long-term average rate (0: no random particles)"),
       Number("recovery", "alpha_fast", &m.alpha_fast, kNonNeg, "",
              "augmented MCL's short-term average rate"),
+      Integer("recovery", "after_unmatched_scans", &config.recovery_after_unmatched_scans, 0,
+              "random particles only after this many scans in a row the map does not match"),
       Number("initial", "sigma_xy_m", &m.initial_sigma_xy_m, kNonNeg, "m",
              "spread around --initial-pose"),
       Number("initial", "sigma_theta_rad", &m.initial_sigma_theta_rad, kNonNeg, "rad",
@@ -126,7 +135,9 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
   const int n = static_cast<int>(log.scans.size());
   double particle_sum = 0.0;
   bool last_refined = false;
+  int unmatched = 0;  // scans in a row whose pose the refiner could not match to the map
   for (int i = 0; i < n; ++i) {
+    mcl.AllowRecovery(unmatched >= config.recovery_after_unmatched_scans);
     if (mcl.ProcessScan(log.scans[i])) RecordUpdate(mcl, i, &particle_sum, &result);
     Pose2 pose = mcl.CurrentPose();
     bool refined = false;
@@ -138,6 +149,7 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
     }
     result.refined_scans += refined;
     last_refined = refined;
+    unmatched = refined ? 0 : unmatched + 1;
     result.trajectory.push_back({log.scans[i].t_s, pose});
     if (progress && (i % 200 == 0 || i + 1 == n)) progress(i + 1, n);
   }

@@ -56,6 +56,7 @@ TEST(LocalizeIntel, AsPreciseOnTheSavedMapAsTheFilterThatBuiltIt) {
   ASSERT_TRUE(run.settled_scan.has_value());
   EXPECT_LT(*run.settled_scan, 300);  // the robot stands still for its first ~140 scans
   EXPECT_GT(run.refined_scans, 3500);
+  EXPECT_EQ(run.recovery_updates, 0);
 }
 
 // From no idea where the robot is, the particles over the whole free space settle on the
@@ -79,8 +80,9 @@ TEST(LocalizeIntel, GlobalLocalisationSettlesOnTheTrackedPoses) {
 }
 
 // The log cut after scan 1,500 and resumed at scan 2,500, its odometry carried on from scan
-// 1,500's as if the robot had not moved: with augmented MCL's random particles (off by default)
-// the filter finds the robot again and says so.
+// 1,500's as if the robot had not moved: with the defaults (augmented MCL's random particles
+// once the scans stop matching the map) the filter finds the robot again and says so, while on
+// the uncut log it never draws one.
 TEST(LocalizeIntel, RandomParticlesFindAKidnappedRobot) {
   const IntelCase* intel = Intel();
   if (intel == nullptr) GTEST_SKIP() << "no intel.clf";
@@ -96,10 +98,7 @@ TEST(LocalizeIntel, RandomParticlesFindAKidnappedRobot) {
   ASSERT_GT((intel->grid.trajectory[1499].pose.translation() -
              intel->grid.trajectory[2500].pose.translation()).norm(),
             2.0);
-  LocalizationConfig config;
-  config.mcl.alpha_slow = 0.001;
-  config.mcl.alpha_fast = 0.1;
-  const LocalizationResult run = RunLocalization(cut, intel->map, config, Pose2());
+  const LocalizationResult run = RunLocalization(cut, intel->map, LocalizationConfig{}, Pose2());
   ASSERT_TRUE(run.settled_scan.has_value());
   ASSERT_TRUE(run.last_recovery_scan.has_value());
   std::printf("kidnapped after scan 1500: %d updates drew random particles, the last at scan %d; "

@@ -82,6 +82,10 @@ class MonteCarloLocalization {
   bool Converged() const { return status_.spread_m < params_.converged_spread_m; }
   const std::vector<Pose2>& particles() const { return poses_; }
   int updates() const { return updates_; }
+  // Whether augmented MCL may draw random particles at the next updates (when it is on): a
+  // caller with other evidence that the robot is where the filter thinks (its scans match the
+  // map there) holds them back. The likelihood averages are kept up to date either way.
+  void AllowRecovery(bool allowed) { recovery_allowed_ = allowed; }
 
  private:
   void Predict(const Pose2& delta);
@@ -101,6 +105,7 @@ class MonteCarloLocalization {
   double w_slow_ = 0.0;
   double w_fast_ = 0.0;
   int updates_ = 0;
+  bool recovery_allowed_ = true;
 };
 
 // The number of particles KLD-sampling asks for when `bins` histogram bins are occupied (Fox

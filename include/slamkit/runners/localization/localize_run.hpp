@@ -20,10 +20,18 @@
 
 namespace slamkit {
 
+// The filter's parameters as the localiser runs it: MclParams' (AMCL's) with augmented MCL's
+// random particles on (0.001, 0.1), since the refiner tells the localiser when they may come.
+MclParams LocalizerMclParams();
+
 struct LocalizationConfig {
-  MclParams mcl;
+  MclParams mcl = LocalizerMclParams();
   LikelihoodFieldParams field;
   MapScanRefinerParams refine = DefaultRefinerParams();
+  // Random particles only after this many scans in a row whose pose the refiner could not match
+  // to the map: where the map merely fails to explain some beams (people, doors) the scans still
+  // match and the estimate stays put; a robot carried away matches nowhere near its estimate.
+  int recovery_after_unmatched_scans = 10;
 };
 
 // Every key of LocalizationConfig: the YAML reader, metrics.json's echo and the command line's
