@@ -7,7 +7,6 @@
 
 #include "common/temp_dir.hpp"
 #include "slamkit/io/error.hpp"
-#include "slamkit/io/mrclam_reader.hpp"
 #include "slamkit/sim/world.hpp"
 
 namespace slamkit {
@@ -17,7 +16,6 @@ namespace fs = std::filesystem;
 
 const fs::path kMarine = fs::path(SLAMKIT_SOURCE_DIR) / "configs" / "marine_eo.yaml";
 const fs::path kMrclamConfig = fs::path(SLAMKIT_SOURCE_DIR) / "configs" / "mrclam.yaml";
-const fs::path kDataset6 = fs::path(SLAMKIT_DATASETS_DIR) / "mrclam" / "MRCLAM_Dataset6";
 
 // The marine scenario cut to its first 600 s.
 CoopConfig ShortMarine(int runs) {
@@ -243,30 +241,6 @@ TEST(CoopConfig, TheShippedFilesLoadAndTheirParamsRoundTrip) {
   ASSERT_TRUE(mrclam.filter.control_noise_density.has_value());
   const nlohmann::json j = CoopConfigJson(mrclam);
   EXPECT_NEAR(j["filter"]["control_noise_density"][1].get<double>(), 8.0, 1e-9);
-}
-
-// The first two minutes of MRCLAM Dataset 6: every filter beats dead reckoning, and the exact
-// mode of each robot is the central filter.
-TEST(CoopMrclam, FiltersBeatDeadReckoningOnTheFirstTwoMinutes) {
-  if (!fs::exists(kDataset6 / "Barcodes.dat")) GTEST_SKIP() << "no " << kDataset6;
-  const CoopConfig config = LoadCoopConfig(kMrclamConfig);
-  MrclamSelection window;
-  window.duration_s = 120.0;
-  const auto [log, truth] = MrclamFleet(ReadMrclam(kDataset6), window);
-  const CoopStudyResult r =
-      RunCoopLog(log, truth, {}, config.filter,
-                 {CoopMode::kDeadReckoning, CoopMode::kMono, CoopMode::kExact, CoopMode::kCentral},
-                 config.seed);
-  double dead = 0.0, mono = 0.0, exact = 0.0;
-  for (std::size_t v = 0; v < 5; ++v) {
-    dead += Mode(r, CoopMode::kDeadReckoning).vehicles[v].position_rmse_m / 5.0;
-    mono += Mode(r, CoopMode::kMono).vehicles[v].position_rmse_m / 5.0;
-    exact += Mode(r, CoopMode::kExact).vehicles[v].position_rmse_m / 5.0;
-    EXPECT_NEAR(Mode(r, CoopMode::kExact).vehicles[v].position_rmse_m,
-                Mode(r, CoopMode::kCentral).vehicles[v].position_rmse_m, 1e-9);
-  }
-  EXPECT_LT(mono, dead);
-  EXPECT_LT(exact, dead);
 }
 
 }  // namespace

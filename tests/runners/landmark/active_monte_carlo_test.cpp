@@ -9,6 +9,7 @@
 #include <set>
 #include <vector>
 
+#include "runners/landmark/short_swslam.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"
 
 namespace slamkit {
@@ -18,15 +19,6 @@ namespace fs = std::filesystem;
 
 ScenarioConfig Load(const char* name) {
   return LoadScenario(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / name);
-}
-
-// configs/swslam.yaml cut to the route's first leg past the first dense cluster and back: short
-// enough for a test, and SWSLAM still detours there.
-ScenarioConfig ShortSwslam() {
-  ScenarioConfig c = Load("swslam.yaml");
-  c.scenario.route.waypoints_m = {{8, 8}, {30, 3}, {52, 3}, {60, 20}};
-  c.scenario.max_steps = 4000;
-  return c;
 }
 
 ActiveMonteCarloParams Params(int runs, std::uint64_t seed, int threads) {

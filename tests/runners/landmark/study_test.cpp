@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "runners/landmark/short_swslam.hpp"
 #include "common/temp_dir.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/runners/landmark/study_outputs.hpp"
@@ -17,14 +18,6 @@ namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
-
-// configs/swslam.yaml on the route's first legs, past the first dense cluster and back.
-ScenarioConfig ShortSwslam() {
-  ScenarioConfig c = LoadScenario(fs::path(SLAMKIT_SOURCE_DIR) / "configs" / "swslam.yaml");
-  c.scenario.route.waypoints_m = {{8, 8}, {30, 3}, {52, 3}, {60, 20}};
-  c.scenario.max_steps = 4000;
-  return c;
-}
 
 StudyParams Small() {
   StudyParams p;
