@@ -41,6 +41,13 @@ void Transform1d(double* f, int n, int stride, std::vector<double>& d, std::vect
   for (int q = 0; q < n; ++q) f[q * stride] = d[q];
 }
 
+// map_server's trinary reading of a pixel: +1 occupied, -1 free, 0 unknown.
+int PixelOccupancy(std::uint8_t value, const LikelihoodFieldParams& params) {
+  const double p = (255.0 - value) / 255.0;
+  if (p > params.occupied_threshold) return 1;
+  return p < params.free_threshold ? -1 : 0;
+}
+
 }  // namespace
 
 void SquaredDistanceTransform(std::vector<double>& f, int width, int height) {
@@ -75,12 +82,13 @@ LikelihoodField::LikelihoodField(const OccupancyImage& image, const LikelihoodFi
   for (int y = 0; y < height_; ++y) {
     for (int x = 0; x < width_; ++x) {
       // Image rows run from the top (largest y) down.
-      const double p = (255.0 - image.pixels[std::size_t(height_ - 1 - y) * width_ + x]) / 255.0;
+      const int occupancy =
+          PixelOccupancy(image.pixels[std::size_t(height_ - 1 - y) * width_ + x], params);
       const std::size_t i = std::size_t(y) * width_ + x;
-      if (p > params.occupied_threshold) {
+      if (occupancy > 0) {
         f[i] = 0.0;
         ++occupied_count_;
-      } else if (p < params.free_threshold) {
+      } else if (occupancy < 0) {
         free_[i] = 1;
         free_cells_.push_back(origin_m_ + resolution_m_ * Eigen::Vector2d(x + 0.5, y + 0.5));
       }
@@ -101,12 +109,13 @@ OccupancyGrid OccupancyGridFromImage(const OccupancyImage& image,
   const long free = OccupancyGrid::ToSteps(grid_params.log_odds_min);
   for (int row = 0; row < image.height; ++row) {
     for (int x = 0; x < image.width; ++x) {
-      const double p = (255.0 - image.pixels[std::size_t(row) * image.width + x]) / 255.0;
-      if (p >= params.free_threshold && p <= params.occupied_threshold) continue;
+      const int occupancy =
+          PixelOccupancy(image.pixels[std::size_t(row) * image.width + x], params);
+      if (occupancy == 0) continue;
       const int y = image.height - 1 - row;
       const Eigen::Vector2d centre =
           image.origin_m + image.resolution_m * Eigen::Vector2d(x + 0.5, y + 0.5);
-      grid.UpdateSteps(grid.WorldToCell(centre), p > params.occupied_threshold ? occupied : free);
+      grid.UpdateSteps(grid.WorldToCell(centre), occupancy > 0 ? occupied : free);
     }
   }
   return grid;

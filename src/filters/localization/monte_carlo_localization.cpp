@@ -191,31 +191,46 @@ void MonteCarloLocalization::ResampleKld(const std::vector<double>& per_beam_log
   poses_ = std::move(next);
 }
 
+namespace {
+
+// The weighted mean of the particles in the heaviest position bin (`keys`: each particle's).
+Eigen::Vector2d HeaviestBinMean(const std::vector<Pose2>& poses,
+                                const std::vector<double>& weights,
+                                const std::vector<std::uint64_t>& keys) {
+  std::unordered_map<std::uint64_t, double> bin_weight;
+  std::uint64_t best_bin = 0;
+  double best_weight = -1.0;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const double w = bin_weight[keys[k]] += weights[k];
+    if (w > best_weight) {
+      best_weight = w;
+      best_bin = keys[k];
+    }
+  }
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  double in_bin = 0.0;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    if (keys[k] != best_bin) continue;
+    centre += weights[k] * poses[k].translation();
+    in_bin += weights[k];
+  }
+  return centre / std::max(in_bin, 1e-300);
+}
+
+}  // namespace
+
 // The estimate: the weighted mean of the particles within cluster_radius_m of the heaviest
 // position bin's mean (AMCL reports its heaviest cluster's mean); the spread is all particles'.
 void MonteCarloLocalization::Summarise(const std::vector<double>& weights) {
-  std::unordered_map<std::uint64_t, double> bin_weight;
   MclParams xy_only = params_;
   xy_only.bin_theta_rad = 4.0 * M_PI;  // one heading bin
-  std::uint64_t best_bin = 0;
-  double best_weight = -1.0;
+  std::vector<std::uint64_t> keys(poses_.size());
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   for (std::size_t k = 0; k < poses_.size(); ++k) {
-    const std::uint64_t key = BinKey(poses_[k], xy_only);
-    const double w = bin_weight[key] += weights[k];
-    if (w > best_weight) {
-      best_weight = w;
-      best_bin = key;
-    }
-  }
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero(), mean = Eigen::Vector2d::Zero();
-  double in_bin = 0.0;
-  for (std::size_t k = 0; k < poses_.size(); ++k) {
+    keys[k] = BinKey(poses_[k], xy_only);
     mean += weights[k] * poses_[k].translation();
-    if (BinKey(poses_[k], xy_only) != best_bin) continue;
-    centre += weights[k] * poses_[k].translation();
-    in_bin += weights[k];
   }
-  centre /= std::max(in_bin, 1e-300);
+  const Eigen::Vector2d centre = HeaviestBinMean(poses_, weights, keys);
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
   Eigen::Vector2d xy = Eigen::Vector2d::Zero();
   double c = 0.0, s = 0.0, in_cluster = 0.0;
@@ -230,10 +245,9 @@ void MonteCarloLocalization::Summarise(const std::vector<double>& weights) {
   }
   if (in_cluster > 0.0) xy /= in_cluster;
   status_.estimate = Pose2(xy.x(), xy.y(), std::atan2(s, c));
-  status_.spread_m = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(
-                                                 cov, Eigen::EigenvaluesOnly)
-                                                 .eigenvalues()
-                                                 .maxCoeff()));
+  const Eigen::Vector2d eigenvalues =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+  status_.spread_m = std::sqrt(std::max(0.0, eigenvalues.maxCoeff()));
   status_.particles = int(poses_.size());
 }
 

@@ -75,6 +75,8 @@ config::ParamTable LocalizationParamTable(LocalizationConfig& config) {
                    "sharpen each pose by matching the scan against the map"),
       Number("refine", "max_correction_m", &r.max_correction_m, kNonNeg, "m",
              "a match further than this from the estimate is not taken"),
+      Number("refine", "max_correction_rad", &r.max_correction_rad, kNonNeg, "rad",
+             "nor one turned further than this"),
       Number("refine", "follow_gate_m", &r.follow_gate_m, kNonNeg, "m",
              "match from the last refined pose while it is this near the filter's estimate"),
       Number("refine", "far_step_m", &r.far_step_m, kNonNeg, "m",
@@ -83,8 +85,6 @@ config::ParamTable LocalizationParamTable(LocalizationConfig& config) {
       Number("refine", "far_max_correction_m", &r.far_max_correction_m, kNonNeg, "m",
              "such a match further than this from the estimate is not taken"),
       Number("refine", "far_max_correction_rad", &r.far_max_correction_rad, kNonNeg, "rad",
-             "nor one turned further than this"),
-      Number("refine", "max_correction_rad", &r.max_correction_rad, kNonNeg, "rad",
              "nor one turned further than this"),
       WithFlag(config::Seed("", "seed", &m.seed, "random seed of the filter"), "--seed"),
   };
@@ -130,11 +130,14 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
   OccupancyGridParams grid;
   grid.resolution_m = map.resolution_m;
   const MapScanRefiner refiner(OccupancyGridFromImage(map, config.field, grid), config.refine);
-  initial_pose ? mcl.InitialiseAt(*initial_pose) : mcl.InitialiseGlobally();
+  if (initial_pose) {
+    mcl.InitialiseAt(*initial_pose);
+  } else {
+    mcl.InitialiseGlobally();
+  }
   LocalizationResult result;
   const int n = static_cast<int>(log.scans.size());
   double particle_sum = 0.0;
-  bool last_refined = false;
   int unmatched = 0;  // scans in a row whose pose the refiner could not match to the map
   for (int i = 0; i < n; ++i) {
     mcl.AllowRecovery(unmatched >= config.recovery_after_unmatched_scans);
@@ -144,11 +147,10 @@ LocalizationResult RunLocalization(const CarmenLog& log, const OccupancyImage& m
     if (mcl.Converged()) {
       const Pose2 step = i > 0 ? log.scans[i - 1].odometry.Between(log.scans[i].odometry) : Pose2();
       std::optional<Pose2> followed;
-      if (last_refined) followed = result.trajectory.back().pose.Compose(step);
+      if (i > 0 && unmatched == 0) followed = result.trajectory.back().pose.Compose(step);
       pose = refiner.Refine(log.scans[i], pose, followed, step, &refined);
     }
     result.refined_scans += refined;
-    last_refined = refined;
     unmatched = refined ? 0 : unmatched + 1;
     result.trajectory.push_back({log.scans[i].t_s, pose});
     if (progress && (i % 200 == 0 || i + 1 == n)) progress(i + 1, n);

@@ -47,7 +47,7 @@ struct MclParams {
   // the random particles drew the estimate away; 0.001 and 0.1 recover a kidnapped robot.
   double alpha_slow = 0.0;
   double alpha_fast = 0.0;
-  double initial_sigma_xy_m = 0.5;        // spread around --initial-pose (AMCL initial_cov 0.25 m²)
+  double initial_sigma_xy_m = 0.5;  // spread around --initial-pose (AMCL initial_cov 0.25 m²)
   double initial_sigma_theta_rad = 0.2618;  // π/12 (AMCL initial_cov_aa (π/12)²)
   double cluster_radius_m = 1.0;   // the estimate: mean of the particles this near the best bin
   double converged_spread_m = 0.5; // converged: the particles' position spread below this
