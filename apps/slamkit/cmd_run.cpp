@@ -133,6 +133,14 @@ int RunIsamCommand(const RunOptions& o) {
     fmt::print("  no smoothed reference: {}\n", result.smoothed_reference_failure);
   }
   fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
+  if (result.innovation_check) {
+    const InnovationCheck& check = *result.innovation_check;
+    fmt::print("  {:<28}{:>12.4f}  (the gate allows {:.4f}: {})\n", "re-sightings off the gate",
+               check.reobservations_outside_share, check.expected_share,
+               VerdictName(check.verdict));
+    const std::string warning = IsamNoiseWarning(check);
+    if (!warning.empty()) PrintStderr("slamkit: warning: {}\n", warning);
+  }
   fmt::print("wrote {}\n", o.out);
   return 0;
 }

@@ -103,6 +103,33 @@ TEST(VictoriaPark, JointCompatibilityMapsTheParkWithoutTheFileIds) {
   EXPECT_LT(ref["map_rmse_m"].get<double>(), 3.0);
   EXPECT_GE(ref["landmarks_compared"].get<int>(), 140);
   EXPECT_EQ(drift["windows"], 69);
+  // A run that is right does not warn (issue 31 part 6).
+  EXPECT_EQ(m["innovation_check"]["verdict"], "consistent");
+  EXPECT_EQ(m["innovation_check"]["warning"], "");
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+}
+
+// Issue 31 part 6: without --config the file's own noise (a fixed 1 cm, 0.11 deg per step) lets
+// the path drift past the gates; the run ends 101 m from the reference. It must say so, name the
+// keys that fix it, and record the check.
+TEST(VictoriaPark, TheFileOwnNoiseWarnsAndNamesTheKeys) {
+  if (!fs::exists(kVictoria)) GTEST_SKIP() << "no " << kVictoria;
+  const fs::path dir = FreshDir("victoria_own_noise");
+  const auto r = RunCli("run --isam " + kVictoria + " --no-figures --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("slamkit: warning:"), std::string::npos) << r.output;
+  for (const char* key : {"odometry.srr", "--odometry-noise", "configs/victoria_park.yaml"}) {
+    EXPECT_NE(r.output.find(key), std::string::npos) << key;
+  }
+  const auto m = nlohmann::json::parse(ReadText(dir / "metrics.json"));
+  const auto& check = m["innovation_check"];
+  EXPECT_EQ(check["verdict"], "noise_too_small");
+  EXPECT_EQ(check["reference_landmarks"], 151);
+  EXPECT_GT(check["reobservations_outside_gate_share"].get<double>(),
+            2.0 * check["expected_share"].get<double>());
+  EXPECT_NE(check["warning"].get<std::string>().find("too small"), std::string::npos);
+  // It is what the warning says: the run is far off.
+  EXPECT_GT(m["smoothed_reference"]["ate_rmse_m"].get<double>(), 20.0);
 }
 
 TEST(Intel, GridSlamOnTheFirstScansWritesTheContractFiles) {

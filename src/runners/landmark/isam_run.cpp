@@ -35,6 +35,7 @@ struct Pass {
   std::vector<std::pair<int, LandmarkId>> assigned;
   Trajectory estimate;
   int sightings = 0;
+  int outside_gate = 0;  // new landmarks and dropped sightings
   int dropped = 0;
 };
 
@@ -51,6 +52,7 @@ Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& 
     const auto decisions = slam.Update(input);
     for (std::size_t i = 0; i < decisions.size(); ++i) {
       pass.dropped += decisions[i].kind == AssociationDecision::Kind::kDropped ? 1 : 0;
+      pass.outside_gate += decisions[i].kind != AssociationDecision::Kind::kMatched ? 1 : 0;
       pass.assigned.emplace_back(decisions[i].landmark, sightings[i].id);
     }
     pass.sightings += static_cast<int>(sightings.size());
@@ -101,6 +103,16 @@ std::set<std::pair<LandmarkId, LandmarkId>> SightedTogether(const IsamLog& log) 
   add(log.initial_sightings);
   for (const IsamStep& step : log.steps) add(step.sightings);
   return together;
+}
+
+// How many landmarks the file names.
+long DistinctIds(const IsamLog& log) {
+  std::set<LandmarkId> ids;
+  for (const PointObservation& s : log.initial_sightings) ids.insert(s.id);
+  for (const IsamStep& step : log.steps) {
+    for (const PointObservation& s : step.sightings) ids.insert(s.id);
+  }
+  return static_cast<long>(ids.size());
 }
 
 // Representative of `id` in a union-find forest over file ids.
@@ -172,7 +184,10 @@ std::vector<std::vector<LandmarkId>> IndistinguishableReferenceIds(const IsamLog
 IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) {
   EkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
                std::make_unique<RelativePointModel>());
-  return RunFilterOnIsam(slam, log, params, params.ekf.known_association());
+  IsamRunResult out = RunFilterOnIsam(slam, log, params, params.ekf.known_association());
+  out.innovation_check = CheckInnovations(out.sightings, out.sightings_outside_gate,
+                                          DistinctIds(log), 2, params.ekf.association.gate_chi2);
+  return out;
 }
 
 IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
@@ -200,6 +215,7 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   out.counters = filter.Counters();
   out.sightings = pass.sightings;
   out.dropped = pass.dropped;
+  out.sightings_outside_gate = pass.outside_gate;
   out.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.odometry_heading_drift = FitFileOdometry(log, out.estimate, params.heading_drift_fit);
   const IdAgreement agreement = AssociationAgreement(pass.assigned, out.sightings);

@@ -59,7 +59,35 @@ nlohmann::json CountersJson(std::span<const FilterCounter> counters) {
   return json;
 }
 
+nlohmann::json InnovationCheckJson(const InnovationCheck& c) {
+  return {{"sightings", c.sightings},
+          {"outside_gate", c.outside_gate},
+          {"reference_landmarks", c.reference_landmarks},
+          {"reobservations_outside_gate_share", c.reobservations_outside_share},
+          {"expected_share", c.expected_share},
+          {"band_95_hi", c.band_hi},
+          {"ratio", c.ratio},
+          {"verdict", VerdictName(c.verdict)}};
+}
+
 }  // namespace
+
+std::string IsamNoiseWarning(const InnovationCheck& c) {
+  if (!c.warn()) return "";
+  return fmt::format(
+      "{:.1f} % of the sightings that re-observe a landmark (the log names {} landmarks in {} "
+      "sightings) matched none, {:.0f} times the {:.1f} % that the association gate lets a right "
+      "noise model miss: the filter's innovations are larger than its covariance says. The "
+      "odometry or sighting noise is likely too small for this log (a file's own covariances "
+      "often are, and do not grow with the motion), so re-observations start duplicate landmarks "
+      "and the map and path diverge. Widen the odometry noise (odometry.srr/srt/str/stt or "
+      "odometry.covariance_scale; --odometry-noise, --odometry-cov-scale) or the sighting noise "
+      "(sightings.sigma_range_m/sigma_bearing_deg or sightings.covariance_scale; "
+      "--sighting-noise, --sighting-cov-scale), or start from a tuned config such as "
+      "configs/victoria_park.yaml",
+      100.0 * c.reobservations_outside_share, c.reference_landmarks, c.sightings, c.ratio,
+      100.0 * c.expected_share);
+}
 
 nlohmann::json RunSummaryJson(int k, const RunSummary& r) {
   return {{"run", k},
@@ -186,6 +214,10 @@ nlohmann::json IsamMetrics(const IsamRunResult& r, const IsamRunParams& params) 
   if (r.odometry_heading_drift) {
     metrics["odometry_heading_drift"] =
         HeadingDriftJson(*r.odometry_heading_drift, params.heading_drift_fit);
+  }
+  if (r.innovation_check) {
+    metrics["innovation_check"] = InnovationCheckJson(*r.innovation_check);
+    metrics["innovation_check"]["warning"] = IsamNoiseWarning(*r.innovation_check);
   }
   if (r.smoothed_reference) {
     const IsamReferenceErrors& e = *r.smoothed_reference;

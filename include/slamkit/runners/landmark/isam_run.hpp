@@ -7,6 +7,7 @@
 
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/heading_drift.hpp"
+#include "slamkit/eval/innovation_check.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
 #include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"
@@ -85,6 +86,11 @@ struct IsamRunResult {
   LandmarkMap map;
   int sightings = 0;
   int dropped = 0;
+  int sightings_outside_gate = 0;  // matched no landmark: started one or dropped
+  // Whether the re-observations missed their gates as often as the noise model allows (EKF
+  // runs: a FastSLAM particle's gate holds one step's pose uncertainty, not the path's, so its
+  // misses say less about the noise).
+  std::optional<InnovationCheck> innovation_check;
   // Share of sightings whose landmark is the one the file names, after matching our landmarks
   // one-to-one to the file's ids (greedily, by the number of sightings each pair shares).
   double association_agreement = 0.0;

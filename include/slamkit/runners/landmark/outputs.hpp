@@ -53,6 +53,9 @@ void WriteMonteCarloOutputs(const std::filesystem::path& dir, const nlohmann::js
                             const MonteCarloResult& result);
 
 // metrics.json of an iSAM-log run: association_agreement, landmarks_mapped, wall_time_s, ...
+// The warning for a run whose innovations sit far outside their band, naming the likely cause
+// and the keys that address it; empty when the check found nothing to say.
+std::string IsamNoiseWarning(const InnovationCheck& check);
 nlohmann::json IsamMetrics(const IsamRunResult& result, const IsamRunParams& params);
 
 // Writes DIR/metrics.json, DIR/estimate.tum and DIR/map.csv.
