@@ -116,10 +116,10 @@ void RegisterCoop(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "coop",
       "cooperative EKF-SLAM (SPEC S3): Mono, EO-CSLAM, its exact form and the centralised "
-      "filter on a simulated fleet or an MRCLAM data set\n"
-      "  example: slamkit coop --config configs/marine_eo.yaml --runs 50 --out out/coop\n"
-      "           slamkit coop --mrclam ../shared/datasets/mrclam/MRCLAM_Dataset6 "
-      "--config configs/mrclam.yaml --out out/mrclam");
+      "filter on a simulated fleet or an MRCLAM data set");
+  AddExamples(cmd, {
+               "--config configs/marine_eo.yaml --runs 50 --out out/coop",
+               "--mrclam ../shared/datasets/mrclam/MRCLAM_Dataset6 --config configs/mrclam.yaml --out out/mrclam"});
   cmd->add_option("--config", o->config, "cooperative config (configs/marine_eo.yaml, "
                                          "configs/mrclam.yaml)")
       ->required()

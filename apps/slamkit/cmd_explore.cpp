@@ -112,6 +112,8 @@ void RegisterExplore(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<ExploreOptions>();
   CLI::App* cmd = app.add_subcommand(
       "explore", "frontier exploration driven by line-and-corner EKF-SLAM in a floor plan (SPEC S1)");
+  AddExamples(cmd, {
+               "--config configs/office_selection.yaml --policy entropy --out out/office"});
   cmd->add_option("--config", o->config, "the experiment (configs/office_selection.yaml)")
       ->required()
       ->check(CLI::ExistingFile);

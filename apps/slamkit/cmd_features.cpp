@@ -145,6 +145,8 @@ void RegisterFeatures(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<FeaturesOptions>();
   CLI::App* cmd =
       app.add_subcommand("features", "line-and-corner EKF-SLAM (SPEC S1) on a CARMEN laser log");
+  AddExamples(cmd, {
+               "--log ../shared/datasets/carmen/intel.clf --config configs/features.yaml --relations ../shared/datasets/carmen/intel.relations --out out/intel_features"});
   AddLogInputOptions(cmd, o->input);
   cmd->add_option("--out", o->out, "output directory")->required();
   const std::vector<CLI::Option*> filter_options = AddFilterOptions(cmd, *o);

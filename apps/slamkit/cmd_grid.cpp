@@ -136,6 +136,9 @@ int RunGridCommand(const GridOptions& o) {
 void RegisterGrid(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<GridOptions>();
   CLI::App* cmd = app.add_subcommand("grid", "occupancy-grid SLAM on a CARMEN laser log (--backend rbpf: particle filter; graph: submaps and a pose graph)");
+  AddExamples(cmd, {
+               "--log ../shared/datasets/carmen/intel.clf --relations ../shared/datasets/carmen/intel.relations --out out/intel",
+               "--log ../shared/datasets/carmen/intel.clf --relations ../shared/datasets/carmen/intel.relations --backend graph --out out/intel_graph"});
   AddLogInputOptions(cmd, o->input);
   cmd->add_option("--out", o->out, "output directory")->required();
   const std::vector<CLI::Option*> filter_options = AddGridFilterOptions(cmd, o->slam);

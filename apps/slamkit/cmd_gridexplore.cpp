@@ -144,7 +144,8 @@ void RegisterGridExplore(CLI::App& app, int& exit_code) {
       "gridexplore",
       "SPEC S4's simulated exploration: the grid RBPF drives a frontier explorer, with or "
       "without P-SLAM's structure prediction");
-  cmd->footer("example: slamkit gridexplore --plan maze --predict on --seed 1 --out out/maze");
+  AddExamples(cmd, {
+               "--plan maze --predict on --seed 1 --out out/maze_explore"});
   cmd->add_option("--out", o->out, "output directory")->required();
   AddExploreOptions(cmd, *o);
   AddGridFilterOptions(cmd, o->slam);

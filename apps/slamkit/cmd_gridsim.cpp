@@ -129,6 +129,9 @@ void RegisterGridSim(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "gridsim",
       "occupancy-grid RBPF SLAM on a simulated laser run (SPEC S4 maze, a map or a walls file)");
+  AddExamples(cmd, {
+               "--plan maze --out out/maze_sim",
+               "--plan examples/plans/room_with_pillar.txt --waypoints examples/plans/room_with_pillar_route.txt --loops 2 --out out/room_sim"});
   cmd->add_option("--out", o->out, "output directory")->required();
   AddSimulationOptions(cmd, *o);
   AddGridFilterOptions(cmd, o->slam);

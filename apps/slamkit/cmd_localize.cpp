@@ -116,8 +116,9 @@ void RegisterLocalize(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "localize", "Monte Carlo localisation (KLD-sampling, likelihood field) of a CARMEN log on "
                   "a saved map (map.yaml, as `slamkit grid` writes it)");
-  cmd->footer("Example: slamkit localize --map out/intel/map.yaml --log intel.clf "
-              "--relations intel.relations --initial-pose 0,0,0 --out out/intel_localize");
+  AddExamples(cmd, {
+               "--map out/intel/map.yaml --log ../shared/datasets/carmen/intel.clf --relations ../shared/datasets/carmen/intel.relations --initial-pose 0,0,0 --out out/intel_localize   # after the first grid example",
+               "--map out/intel/map.yaml --log ../shared/datasets/carmen/intel.clf --relations ../shared/datasets/carmen/intel.relations --global --out out/intel_global"});
   AddLogInputOptions(cmd, o->input);
   cmd->add_option("--map", o->map, "map_server YAML (image, resolution, origin)")
       ->required()->check(CLI::ExistingFile);

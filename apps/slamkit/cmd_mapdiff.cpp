@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "slamkit/eval/map_alignment.hpp"
 #include "slamkit/eval/map_comparison.hpp"
 #include "slamkit/io/error.hpp"
@@ -81,7 +82,8 @@ void RegisterMapDiff(CLI::App& app, int& exit_code) {
       "--occupied-thresh is occupied, below --free-thresh free, else unknown. Cells unknown in "
       "both maps are left out; an unknown cell against a known one counts as p = 0.5; p is "
       "clamped to [floor, 1 - floor] so that 0 and 1 stay finite");
-  cmd->footer("  example: slamkit mapdiff out/a/map.yaml out/b/map.yaml --json\n");
+  AddExamples(cmd, {
+               "out/intel/map.yaml out/intel_graph/map.yaml --json   # after both grid examples"});
   cmd->add_option("first", o->first, "the first map's YAML (P in Eq. 24)")->required();
   cmd->add_option("second", o->second, "the second map's YAML (Q)")->required();
   cmd->add_flag("--json", o->json, "print the figures as JSON");

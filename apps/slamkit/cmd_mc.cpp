@@ -163,6 +163,9 @@ void RegisterMonteCarlo(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<McOptions>();
   CLI::App* cmd =
       app.add_subcommand("mc", "Monte Carlo landmark SLAM runs on a simulated scenario");
+  AddExamples(cmd, {
+               "--config configs/square_400.yaml --runs 1 --no-figures --out out/square_400",
+               "--config configs/default.yaml --runs 10 --filter fastslam2 --particles 50 --out out/fastslam2"});
   cmd->add_option("--config", options->config, "scenario YAML file (see docs/scenario.md)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -178,6 +181,8 @@ void RegisterDemo(CLI::App& app, int& exit_code) {
   options->runs = 20;
   CLI::App* cmd = app.add_subcommand(
       "demo", "the default demo: a car-like robot mapping a landmark world (SPEC S2)");
+  AddExamples(cmd, {
+               "--runs 5 --out out/demo5"});
   cmd->add_option("--config", options->config, "scenario YAML file")
       ->capture_default_str()
       ->check(CLI::ExistingFile);

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "commands.hpp"
+#include "options.hpp"
 #include "output_dir.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/pose_graph_io.hpp"
@@ -94,8 +95,8 @@ void RegisterPoseGraph(CLI::App& app, int& exit_code) {
       "start; writes graph.g2o (the better solution), trajectory_START.tum per start, "
       "trajectory.tum, metrics.json (chi2 and SE-Sync's objective before and after, "
       "iterations, times) and graph.png");
-  cmd->footer("  example: slamkit posegraph ../shared/datasets/posegraphs/intel.g2o "
-              "--objective sesync --out out/intel_graph\n");
+  AddExamples(cmd, {
+               "../shared/datasets/posegraphs/intel.g2o --objective sesync --out out/intel_g2o"});
   cmd->add_option("file", o->file, "the pose graph file")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
   cmd->add_option("--objective", o->objective,

@@ -151,6 +151,9 @@ void RegisterRun(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd =
       app.add_subcommand("run", "EKF-SLAM or FastSLAM over a real data set (iSAM format)");
+  AddExamples(cmd, {
+               "--isam ../shared/datasets/victoria_park/victoria_park_isam.txt --config configs/victoria_park.yaml --out out/victoria_park",
+               "--isam ../shared/datasets/victoria_park/victoria_park_isam.txt --config configs/victoria_park.yaml --filter fastslam2 --association nn --out out/victoria_park_fastslam2"});
   cmd->add_option("--isam", o->isam,
                   "iSAM-format log (ODOMETRY/LANDMARK lines), e.g. Victoria Park")
       ->required()

@@ -79,6 +79,8 @@ void RegisterStudy(CLI::App& app, int& exit_code) {
       "study",
       "seed 001's experiment (SPEC S2): EKF-SLAM and FastSLAM on the route against "
       "SWSLAM, Tables 1-5 beside the paper's");
+  AddExamples(cmd, {
+               "--config configs/swslam.yaml --runs 10 --out out/study"});
   cmd->add_option("--config", o->config,
                   "scenario YAML file with a planner section "
                   "(configs/swslam.yaml)")

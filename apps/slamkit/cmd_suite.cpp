@@ -277,6 +277,9 @@ void RegisterSuite(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SuiteOptions>();
   CLI::App* cmd = app.add_subcommand(
       "suite", "the grid filter on every log of a suite manifest and every seed, with a summary");
+  AddExamples(cmd, {
+               "--manifest configs/carmen_suite.yaml --logs freiburg-101,csail --seeds 1-2 --out out/suite_small",
+               "--manifest configs/carmen_suite.yaml --seeds 1-5 --backend both --out out/suite"});
   cmd->add_option("--manifest", o->manifest, "suite manifest (configs/carmen_suite.yaml)")
       ->required()
       ->check(CLI::ExistingFile);

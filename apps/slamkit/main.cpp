@@ -30,11 +30,22 @@ bool ReopenIfClosed(int fd, int flags) {
   return true;
 }
 
+// Thrown to stop a --dry-run between parsing and running.
+struct DryRunDone {};
+
 int Run(int argc, char** argv) {
   CLI::App app{"slamkit: 2D SLAM on simulated worlds and real robot logs"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("slamkit ") + SLAMKIT_VERSION);
   int exit_code = 0;
+  bool dry_run = false;
+  app.add_flag("--dry-run", dry_run,
+               "parse the command and check the files it names, then stop: nothing runs, nothing "
+               "is written (slamkit --dry-run grid --log ... --out DIR)");
+  // Runs after every option is parsed and checked and before the command's own callback.
+  app.parse_complete_callback([&dry_run] {
+    if (dry_run) throw DryRunDone();
+  });
   slamkit::app::RegisterDemo(app, exit_code);
   slamkit::app::RegisterMonteCarlo(app, exit_code);
   slamkit::app::RegisterRun(app, exit_code);
@@ -57,6 +68,10 @@ int Run(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const DryRunDone&) {
+    std::printf("slamkit: dry run: the command line and the files it names check out; nothing "
+                "was run\n");
+    return 0;
   } catch (const CLI::ParseError& e) {
     app.exit(e);
     return 2;

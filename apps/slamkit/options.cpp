@@ -175,4 +175,17 @@ std::vector<CLI::Option*> AddParamOptions(CLI::App* cmd, const config::ParamTabl
   return options;
 }
 
+void AddExamples(CLI::App* cmd, std::vector<std::string> examples) {
+  cmd->footer([cmd, examples = std::move(examples)] {
+    const CLI::App* root = cmd;
+    while (root->get_parent() != nullptr) root = root->get_parent();
+    const std::string program = root->get_name().empty() ? "slamkit" : root->get_name();
+    std::string text = "Examples (from the repository root):";
+    for (const std::string& example : examples) {
+      text += "\n  " + program + " " + cmd->get_name() + " " + example;
+    }
+    return text;
+  });
+}
+
 }  // namespace slamkit::app

@@ -32,4 +32,9 @@ std::vector<std::uint64_t> ParseSeeds(const std::string& text);
 // them in the table's order (so that --config can exclude them).
 std::vector<CLI::Option*> AddParamOptions(CLI::App* cmd, const config::ParamTable& table);
 
+// Ends `cmd`'s help with `examples`, each the arguments after the command's name, shown after
+// the program's name as it was invoked: they run as written from the repository root (the
+// datasets in ../shared). tests/apps/help_examples_test.cpp checks each with --dry-run.
+void AddExamples(CLI::App* cmd, std::vector<std::string> examples);
+
 }  // namespace slamkit::app
