@@ -20,6 +20,7 @@ int FuzzMrclam(const std::uint8_t* data, std::size_t size);
 int FuzzOccupancyImage(const std::uint8_t* data, std::size_t size);
 int FuzzPoseGraph(const std::uint8_t* data, std::size_t size);
 int FuzzRelations(const std::uint8_t* data, std::size_t size);
+int FuzzRunErrors(const std::uint8_t* data, std::size_t size);
 int FuzzScenario(const std::uint8_t* data, std::size_t size);
 int FuzzSuiteManifest(const std::uint8_t* data, std::size_t size);
 int FuzzTrajectory(const std::uint8_t* data, std::size_t size);
@@ -40,6 +41,7 @@ inline constexpr Harness kHarnesses[] = {
     {"occupancy_image", &FuzzOccupancyImage},
     {"pose_graph", &FuzzPoseGraph},
     {"relations", &FuzzRelations},
+    {"run_errors", &FuzzRunErrors},
     {"scenario", &FuzzScenario},
     {"suite_manifest", &FuzzSuiteManifest},
     {"trajectory", &FuzzTrajectory},

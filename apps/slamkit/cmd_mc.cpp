@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "options.hpp"
+#include "mc_figures.hpp"
 #include "output_dir.hpp"
 #include "progress.hpp"
 #include "slamkit/core/angle.hpp"
@@ -35,6 +36,7 @@ struct McOptions {
   bool no_figures = false;
   bool unknown_association = false;
   bool known_association = false;
+  std::string shard;  // K/N; empty: every run
 };
 
 void PrintSummary(const ScenarioConfig& config, const ActiveMonteCarloResult& result) {
@@ -67,30 +69,6 @@ void PrintSummary(const ScenarioConfig& config, const ActiveMonteCarloResult& re
   fmt::print("{}", SectionMeansText(result.sections));
 }
 
-void WriteFigures(const std::filesystem::path& dir, const ScenarioParams& scenario,
-                  const ActiveMonteCarloResult& result) {
-  const MonteCarloResult& mc = result.mc;
-  PathFigureData path;
-  path.markers_m = result.first_trace.centres_m;
-  path.markers_label = "self-detected waypoints";
-  path.title = fmt::format("{}: run 0", scenario.name);
-  path.truth = mc.first_run.truth;
-  path.estimate = mc.first_run.estimate;
-  path.true_landmarks = mc.world;
-  path.map = mc.first_run.map;
-  WritePathFigure(dir / "map.png", path);
-
-  ConsistencyFigureData consistency;
-  consistency.title = fmt::format("{}: {} Monte Carlo runs", scenario.name, mc.run_count);
-  consistency.t_s = mc.t_s;
-  consistency.anees = mc.anees;
-  consistency.band_lo = mc.band.lo;
-  consistency.band_hi = mc.band.hi;
-  consistency.position_rmse_m = mc.position_rmse_m;
-  consistency.heading_rmse_rad = mc.heading_rmse_rad;
-  WriteConsistencyFigure(dir / "consistency.png", consistency);
-}
-
 int RunMonteCarloCommand(const McOptions& options) {
   ScenarioConfig config = LoadScenario(options.config);
   if (options.known_association) config.ekf.association_method = AssociationMethod::kKnown;
@@ -101,12 +79,19 @@ int RunMonteCarloCommand(const McOptions& options) {
   const PlannerKind planner =
       options.planner.empty() ? config.planner.kind : ParsePlannerKind(options.planner);
   const LandmarkFilterFactory factory = FactoryForFilter(filter, options.particles, config);
+  const Shard shard = options.shard.empty() ? Shard{} : ParseShard(options.shard);
+  if (shard.count > options.runs) {
+    throw CLI::ValidationError("--shard", fmt::format("{} parts of {} runs: N must be at most "
+                                                      "--runs", shard.count, options.runs));
+  }
   OutputDir output(options.out);
   ActiveMonteCarloParams params;
   params.mc.runs = options.runs;
   params.mc.seed = options.seed;
   params.mc.threads = options.threads > 0 ? options.threads : UsableCpuCount();
-  auto progress = std::make_shared<Progress>("runs", options.runs);
+  params.mc.shard = shard;
+  auto progress = std::make_shared<Progress>(
+      "runs", RangeOfShard(options.runs, params.mc.shard).size());
   params.mc.progress = [progress](int done, int total) {
     (void)total;
     progress->Update(done);
@@ -124,7 +109,10 @@ int RunMonteCarloCommand(const McOptions& options) {
   };
   const ActiveMonteCarloResult result = RunActiveMonteCarlo(config, factory, planner, params);
   // Figures first: metrics.json is written last, so its presence means the run completed.
-  if (!options.no_figures) WriteFigures(dir, config.scenario, result);
+  if (!options.no_figures) {
+    WriteMonteCarloFigures(dir, config.scenario.name, result,
+                           RangeOfShard(options.runs, shard).begin);
+  }
   writer.Finish(ActiveMonteCarloMetrics(config, params.mc, result, filter, options.particles),
                 result.mc);
   output.Commit();
@@ -140,6 +128,10 @@ void AddCommonOptions(CLI::App& cmd, McOptions& o) {
   cmd.add_option("--threads", o.threads, "worker threads (0: all the CPUs this process may use)")
       ->check(CLI::Range(0, 1024));
   cmd.add_flag("--no-figures", o.no_figures, "skip the PNG figures");
+  cmd.add_option("--shard", o.shard,
+                 "K/N: run only the K-th of N contiguous parts of the runs (slamkit merge joins "
+                 "the N output folders into the unsharded run's)")
+      ->check(ShardText());
   cmd.add_option("--filter", o.filter,
                  "ekf (the scenario's EKF-SLAM), fastslam1 or fastslam2 (Montemerlo et al. 2002, "
                  "2003: per-particle landmark EKFs in copy-on-write trees)")
@@ -164,8 +156,10 @@ void RegisterMonteCarlo(CLI::App& app, int& exit_code) {
   CLI::App* cmd =
       app.add_subcommand("mc", "Monte Carlo landmark SLAM runs on a simulated scenario");
   AddExamples(cmd, {
-               "--config configs/square_400.yaml --runs 1 --no-figures --out out/square_400",
-               "--config configs/default.yaml --runs 10 --filter fastslam2 --particles 50 --out out/fastslam2"});
+               "--config configs/default.yaml --runs 20 --shard 1/2 --out out/default_1   # "
+               "without --shard: all 20 runs",
+               "--config configs/default.yaml --runs 20 --shard 2/2 --out out/default_2   # "
+               "slamkit merge joins the two"});
   cmd->add_option("--config", options->config, "scenario YAML file (see docs/scenario.md)")
       ->required()
       ->check(CLI::ExistingFile);

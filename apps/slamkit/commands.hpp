@@ -20,5 +20,6 @@ void RegisterCoop(CLI::App& app, int& exit_code);
 void RegisterMapDiff(CLI::App& app, int& exit_code);
 void RegisterPoseGraph(CLI::App& app, int& exit_code);
 void RegisterLocalize(CLI::App& app, int& exit_code);
+void RegisterMerge(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "slamkit/io/error.hpp"
+#include "slamkit/runners/common/shard.hpp"
 
 namespace slamkit::app {
 
@@ -79,6 +80,19 @@ CLI::Validator PositiveNumber() {
 
 CLI::Validator NonNegativeNumber() {
   return NumberCheck(">= 0", [](double v) { return v >= 0.0; });
+}
+
+CLI::Validator ShardText() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          ParseShard(text);
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "K/N");
 }
 
 CLI::Validator SeedNumber() {

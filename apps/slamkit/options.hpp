@@ -24,6 +24,9 @@ CLI::Validator NonNegativeNumber();
 // A seed: digits only, 0 to 2^64 - 1 (CLI11 would read "-1" as 2^64 - 1).
 CLI::Validator SeedNumber();
 
+// "K/N" with 1 <= K <= N (ParseShard's message otherwise).
+CLI::Validator ShardText();
+
 // "1-5", "1,3,7" or "2" as the list of seeds (`--seeds`); InputError naming --seeds otherwise.
 std::vector<std::uint64_t> ParseSeeds(const std::string& text);
 

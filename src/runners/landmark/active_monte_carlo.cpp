@@ -103,6 +103,7 @@ ActiveMonteCarloResult RunActiveMonteCarlo(const ScenarioParams& scenario,
   std::map<int, ActiveRunTrace> pending;
   std::mutex pending_mutex;
   SectionSums sums;
+  const int first_run = RangeOfShard(params.mc.runs, params.mc.shard).begin;
   MonteCarloParams mc_params = params.mc;
   mc_params.on_run = [&](int k, const RunResult& run, const RunSummary& summary) {
     ActiveRunTrace trace;
@@ -114,7 +115,7 @@ ActiveMonteCarloResult RunActiveMonteCarlo(const ScenarioParams& scenario,
     sums.Add(trace.sections);
     if (params.mc.on_run) params.mc.on_run(k, run, summary);
     if (params.on_run) params.on_run(k, run, summary, trace);
-    if (k == 0) result.first_trace = trace;
+    if (k == first_run) result.first_trace = trace;
     if (params.keep_traces) result.traces.push_back(std::move(trace));
   };
   result.mc = internal::RunInBatches(world, mc_params, [&](int k) {

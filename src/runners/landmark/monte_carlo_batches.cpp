@@ -22,100 +22,102 @@ void AddScore(AssociationScore& total, const AssociationScore& s) {
   total.dropped += s.dropped;
 }
 
-// Per-step sums over the runs still running at each step (closed-loop runs differ in length),
-// added one run at a time in index order so that the sums do not depend on which thread finished
-// first, then the summary figures.
-class Aggregator {
- public:
-  Aggregator(MonteCarloResult& mc, int runs) : mc_(mc), runs_(static_cast<double>(runs)) {}
-
-  void Add(const RunResult& r) {
-    const std::size_t steps = r.nees.size();
-    if (steps > mc_.anees.size()) Grow(r);
-    for (std::size_t k = 0; k < steps; ++k) {
-      mc_.anees[k] += r.nees[k];
-      mc_.position_rmse_m[k] += r.errors[k].head<2>().squaredNorm();
-      mc_.heading_rmse_rad[k] += r.errors[k].z() * r.errors[k].z();
-      ++mc_.runs_at_step[k];
-    }
-    pos_sq_ += r.rmse.position_m * r.rmse.position_m;
-    head_sq_ += r.rmse.heading_rad * r.rmse.heading_rad;
-    for (double t : r.step_time_s) {
-      time_sum_ += t;
-      mc_.step_time_max_s = std::max(mc_.step_time_max_s, t);
-    }
-    time_count_ += r.step_time_s.size();
-    mapped_ += static_cast<double>(r.map.landmarks.size());
-    map_rmse_sum_ += r.map_rmse_m;
-    AddScore(mc_.association, r.association);
-  }
-
-  void Finish() {
-    const std::size_t steps = mc_.anees.size();
-    int inside = 0;
-    for (std::size_t k = 0; k < steps; ++k) {
-      const int n = mc_.runs_at_step[k];
-      mc_.anees[k] /= n;
-      mc_.position_rmse_m[k] = std::sqrt(mc_.position_rmse_m[k] / n);
-      mc_.heading_rmse_rad[k] = std::sqrt(mc_.heading_rmse_rad[k] / n);
-      if (std::isfinite(mc_.anees[k])) {
-        mc_.anees_mean += mc_.anees[k];
-      } else {
-        ++mc_.anees_infinite_steps;
-      }
-      inside += BandOf(n).Contains(mc_.anees[k]) ? 1 : 0;
-    }
-    const std::size_t finite = steps - static_cast<std::size_t>(mc_.anees_infinite_steps);
-    mc_.anees_mean = finite > 0 ? mc_.anees_mean / static_cast<double>(finite) : 0.0;
-    mc_.anees_fraction_in_band = steps > 0 ? double(inside) / double(steps) : 0.0;
-    mc_.rmse = {std::sqrt(pos_sq_ / runs_), std::sqrt(head_sq_ / runs_)};
-    mc_.landmarks_mapped_mean = mapped_ / runs_;
-    mc_.map_rmse_mean_m = map_rmse_sum_ / runs_;
-    mc_.step_time_mean_s = time_count_ > 0 ? time_sum_ / double(time_count_) : 0.0;
-  }
-
- private:
-  // A run longer than all before it: the series gain its steps (and their times).
-  void Grow(const RunResult& r) {
-    const std::size_t steps = r.nees.size();
-    mc_.anees.resize(steps, 0.0);
-    mc_.position_rmse_m.resize(steps, 0.0);
-    mc_.heading_rmse_rad.resize(steps, 0.0);
-    mc_.runs_at_step.resize(steps, 0);
-    for (std::size_t i = mc_.t_s.size() + 1; i < r.truth.size(); ++i) {
-      mc_.t_s.push_back(r.truth[i].t_s);  // truth[0] is the start, before the first step
-    }
-  }
-
-  // The band of a mean over the n runs at a step: fewer runs, wider band.
-  const ChiSquareBand& BandOf(int n) {
-    auto it = bands_.find(n);
-    if (it == bands_.end()) it = bands_.emplace(n, AneesBand(n, 3)).first;
-    return it->second;
-  }
-
-  MonteCarloResult& mc_;
-  double runs_;
-  double pos_sq_ = 0.0, head_sq_ = 0.0, time_sum_ = 0.0, mapped_ = 0.0, map_rmse_sum_ = 0.0;
-  std::size_t time_count_ = 0;
-  std::map<int, ChiSquareBand> bands_;
-};
-
 // Run k, in index order: aggregated, handed to on_run, then kept or dropped.
-void TakeRun(int k, RunResult r, const MonteCarloParams& params, Aggregator& aggregate,
-             MonteCarloResult& mc) {
-  aggregate.Add(r);
+void TakeRun(int k, int first, RunResult r, const MonteCarloParams& params,
+             RunAggregator& aggregate, MonteCarloResult& mc) {
+  aggregate.Add(RecordOf(r));
   const RunSummary summary = SummaryOf(r);
   if (params.on_run) params.on_run(k, r, summary);
   if (params.keep_summaries) mc.summaries.push_back(summary);
   if (params.keep_runs) {
     mc.runs.push_back(std::move(r));
-  } else if (k == 0) {
+  } else if (k == first) {
     mc.first_run = std::move(r);
   }
 }
 
 }  // namespace
+
+RunRecord RecordOf(const RunResult& r) {
+  RunRecord record;
+  for (std::size_t i = 1; i < r.truth.size(); ++i) record.t_s.push_back(r.truth[i].t_s);
+  record.errors = r.errors;
+  record.nees = r.nees;
+  record.rmse = r.rmse;
+  record.landmarks_mapped = r.map.landmarks.size();
+  record.map_rmse_m = r.map_rmse_m;
+  record.association = r.association;
+  for (double t : r.step_time_s) {
+    record.step_time_sum_s += t;
+    record.step_time_max_s = std::max(record.step_time_max_s, t);
+  }
+  record.steps_timed = r.step_time_s.size();
+  return record;
+}
+
+RunAggregator::RunAggregator(MonteCarloResult& mc, int runs)
+    : mc_(mc), runs_(static_cast<double>(runs)) {
+  mc_.run_count = runs;
+  mc_.band = AneesBand(runs, 3);
+}
+
+void RunAggregator::Add(const RunRecord& r) {
+  const std::size_t steps = r.nees.size();
+  if (steps > mc_.anees.size()) Grow(r);
+  for (std::size_t k = 0; k < steps; ++k) {
+    mc_.anees[k] += r.nees[k];
+    mc_.position_rmse_m[k] += r.errors[k].head<2>().squaredNorm();
+    mc_.heading_rmse_rad[k] += r.errors[k].z() * r.errors[k].z();
+    ++mc_.runs_at_step[k];
+  }
+  pos_sq_ += r.rmse.position_m * r.rmse.position_m;
+  head_sq_ += r.rmse.heading_rad * r.rmse.heading_rad;
+  time_sum_ += r.step_time_sum_s;
+  mc_.step_time_max_s = std::max(mc_.step_time_max_s, r.step_time_max_s);
+  time_count_ += r.steps_timed;
+  mapped_ += static_cast<double>(r.landmarks_mapped);
+  map_rmse_sum_ += r.map_rmse_m;
+  AddScore(mc_.association, r.association);
+}
+
+void RunAggregator::Finish() {
+  const std::size_t steps = mc_.anees.size();
+  int inside = 0;
+  for (std::size_t k = 0; k < steps; ++k) {
+    const int n = mc_.runs_at_step[k];
+    mc_.anees[k] /= n;
+    mc_.position_rmse_m[k] = std::sqrt(mc_.position_rmse_m[k] / n);
+    mc_.heading_rmse_rad[k] = std::sqrt(mc_.heading_rmse_rad[k] / n);
+    if (std::isfinite(mc_.anees[k])) {
+      mc_.anees_mean += mc_.anees[k];
+    } else {
+      ++mc_.anees_infinite_steps;
+    }
+    inside += BandOf(n).Contains(mc_.anees[k]) ? 1 : 0;
+  }
+  const std::size_t finite = steps - static_cast<std::size_t>(mc_.anees_infinite_steps);
+  mc_.anees_mean = finite > 0 ? mc_.anees_mean / static_cast<double>(finite) : 0.0;
+  mc_.anees_fraction_in_band = steps > 0 ? double(inside) / double(steps) : 0.0;
+  mc_.rmse = {std::sqrt(pos_sq_ / runs_), std::sqrt(head_sq_ / runs_)};
+  mc_.landmarks_mapped_mean = mapped_ / runs_;
+  mc_.map_rmse_mean_m = map_rmse_sum_ / runs_;
+  mc_.step_time_mean_s = time_count_ > 0 ? time_sum_ / double(time_count_) : 0.0;
+}
+
+void RunAggregator::Grow(const RunRecord& r) {
+  const std::size_t steps = r.nees.size();
+  mc_.anees.resize(steps, 0.0);
+  mc_.position_rmse_m.resize(steps, 0.0);
+  mc_.heading_rmse_rad.resize(steps, 0.0);
+  mc_.runs_at_step.resize(steps, 0);
+  for (std::size_t i = mc_.t_s.size(); i < r.t_s.size(); ++i) mc_.t_s.push_back(r.t_s[i]);
+}
+
+const ChiSquareBand& RunAggregator::BandOf(int n) {
+  auto it = bands_.find(n);
+  if (it == bands_.end()) it = bands_.emplace(n, AneesBand(n, 3)).first;
+  return it->second;
+}
 
 LandmarkWorld MakeScenarioWorld(const ScenarioParams& scenario) {
   try {
@@ -156,16 +158,20 @@ MonteCarloResult RunInBatches(LandmarkWorld world, const MonteCarloParams& param
                               const std::function<RunResult(int)>& run_one) {
   if (params.runs < 1) throw std::invalid_argument("RunMonteCarlo: runs must be >= 1");
   if (params.batch_runs < 1) throw std::invalid_argument("RunMonteCarlo: batch_runs must be >= 1");
+  const ShardRange range = RangeOfShard(params.runs, params.shard);
   MonteCarloResult mc;
   mc.world = std::move(world);
-  mc.band = AneesBand(params.runs, 3);
-  mc.run_count = params.runs;
-  if (params.keep_summaries) mc.summaries.reserve(static_cast<std::size_t>(params.runs));
-  if (params.keep_runs) mc.runs.reserve(static_cast<std::size_t>(params.runs));
-  Aggregator aggregate(mc, params.runs);
-  const OrderedBatchParams batches{params.runs, params.batch_runs, params.threads, params.progress};
+  if (params.keep_summaries) mc.summaries.reserve(static_cast<std::size_t>(range.size()));
+  if (params.keep_runs) mc.runs.reserve(static_cast<std::size_t>(range.size()));
+  RunAggregator aggregate(mc, range.size());
+  OrderedBatchParams batches;
+  batches.runs = range.end;
+  batches.first = range.begin;
+  batches.batch_runs = params.batch_runs;
+  batches.threads = params.threads;
+  batches.progress = params.progress;
   RunInOrderedBatches<RunResult>(batches, run_one, [&](int k, RunResult&& r) {
-    TakeRun(k, std::move(r), params, aggregate, mc);
+    TakeRun(k, range.begin, std::move(r), params, aggregate, mc);
   });
   if (params.keep_runs) mc.first_run = mc.runs.front();
   aggregate.Finish();

@@ -129,6 +129,13 @@ nlohmann::json MonteCarloMetrics(const ScenarioConfig& config, const MonteCarloP
                             {"seed", params.seed}};
   metrics.update(MonteCarloResultJson(mc));
   metrics["params"] = ScenarioParamsJson(config);
+  if (!params.shard.whole()) {
+    const ShardRange range = RangeOfShard(params.runs, params.shard);
+    metrics["shard"] = {{"index", params.shard.index},
+                        {"count", params.shard.count},
+                        {"first_run", range.begin},
+                        {"end_run", range.end}};
+  }
   return metrics;
 }
 
@@ -159,6 +166,10 @@ void MonteCarloWriter::Add(int k, const RunResult& run, const RunSummary& summar
   WriteErrorsCsv(run_dir / "errors.csv", run);
   nlohmann::json entry = RunSummaryJson(k, summary);
   entry.update(extra);
+  AddEntry(entry);
+}
+
+void MonteCarloWriter::AddEntry(const nlohmann::json& entry) {
   scratch_ << (runs_ > 0 ? ",\n" : "") << IndentedEntry(entry);
   if (!scratch_) throw std::runtime_error("cannot write " + scratch_path_.string());
   ++runs_;

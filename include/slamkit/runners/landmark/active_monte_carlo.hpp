@@ -69,7 +69,7 @@ struct ActiveMonteCarloResult {
   MonteCarloResult mc;
   PlannerKind planner = PlannerKind::kRoute;
   std::vector<ActiveRunTrace> traces;  // one per run in index order, with keep_traces
-  ActiveRunTrace first_trace;          // run 0's (its centres go on the map figure)
+  ActiveRunTrace first_trace;          // first_run's (its centres go on the map figure)
   std::vector<SectionMean> sections;   // over all runs
 };
 

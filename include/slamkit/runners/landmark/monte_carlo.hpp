@@ -13,6 +13,7 @@
 #include "slamkit/filters/fastslam/fastslam.hpp"
 #include "slamkit/filters/landmark_slam.hpp"
 #include "slamkit/maps/landmark_map.hpp"
+#include "slamkit/runners/common/shard.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"
 
 namespace slamkit {
@@ -71,15 +72,33 @@ struct RunSummary {
   std::vector<FilterCounter> counters;
 };
 
+// What the aggregates of a study take from one run: enough to rebuild them exactly from the
+// run's saved outputs (errors.csv and its per_run entry).
+struct RunRecord {
+  std::vector<double> t_s;  // each step's time (the truth's, after the start)
+  std::vector<Eigen::Vector3d> errors;
+  std::vector<double> nees;
+  PoseRmse rmse;
+  std::size_t landmarks_mapped = 0;
+  double map_rmse_m = 0.0;
+  AssociationScore association;
+  double step_time_sum_s = 0.0;
+  double step_time_max_s = 0.0;
+  std::size_t steps_timed = 0;
+};
+
 struct MonteCarloParams {
   int runs = 50;
+  // Run only this shard's range of the runs (each with its own index's streams, so the shards'
+  // runs are the unsharded study's; MergeMonteCarloShards joins them).
+  Shard shard;
   std::uint64_t seed = 1;
   int threads = 0;  // 0: all the CPUs this process may use (UsableCpuCount)
   // Give the filter the simulator's true landmark ids with each observation.
   bool known_association = false;
   // Called after each finished run with (finished, total), from worker threads one at a time.
   std::function<void(int, int)> progress;
-  // Keep every RunResult in MonteCarloResult::runs. Without it only run 0 (first_run) is kept.
+  // Keep every RunResult in MonteCarloResult::runs. Without it only the first run (first_run) is kept.
   bool keep_runs = true;
   // Keep every RunSummary in MonteCarloResult::summaries. Without it, and without keep_runs,
   // memory is flat in the number of runs: on_run is then the only place a run is seen.
@@ -100,7 +119,7 @@ struct MonteCarloResult {
   LandmarkWorld world;
   int run_count = 0;
   std::vector<RunResult> runs;          // every run with MonteCarloParams::keep_runs, else empty
-  RunResult first_run;                  // run 0 (the figures draw it)
+  RunResult first_run;                  // run 0, or a shard's first (the figures draw it)
   std::vector<RunSummary> summaries;    // one per run, in index order, with keep_summaries
   std::vector<double> t_s;              // the steps of the longest run
   std::vector<int> runs_at_step;        // runs that reached each step

@@ -38,6 +38,8 @@ class MonteCarloWriter {
   void Add(int k, const RunResult& run, const RunSummary& summary);
   // The same, with `extra`'s keys added to run k's per_run entry (a closed loop's sections).
   void Add(int k, const RunResult& run, const RunSummary& summary, const nlohmann::json& extra);
+  // Only the per_run entry of a run whose folder the caller provides (slamkit merge).
+  void AddEntry(const nlohmann::json& entry);
   void Finish(const nlohmann::json& summary, const MonteCarloResult& result);
 
  private:
