@@ -12,9 +12,11 @@
 #include "mc_figures.hpp"
 #include "options.hpp"
 #include "output_dir.hpp"
+#include "suite_sheet.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/landmark_csv.hpp"
+#include "slamkit/runners/grid/suite_merge.hpp"
 #include "slamkit/runners/landmark/monte_carlo_merge.hpp"
 #include "slamkit/runners/landmark/outputs.hpp"
 
@@ -73,7 +75,52 @@ MergedMonteCarlo Merge(const std::vector<SavedMonteCarloShard>& shards) {
   }
 }
 
+// A `slamkit suite --shard` output: summary.json and no metrics.json.
+bool IsSuiteOutput(const fs::path& dir) {
+  return fs::exists(dir / "summary.json") && !fs::exists(dir / "metrics.json");
+}
+
+MergedSuite MergeSuites(const std::vector<std::string>& dirs) {
+  std::vector<SavedSuiteShard> shards;
+  for (const std::string& dir : dirs) {
+    const fs::path path = fs::path(dir) / "summary.json";
+    if (!IsSuiteOutput(dir)) throw InputError(dir + ": not a suite output (mixed with mc shards?)");
+    shards.push_back({dir, ReadJson(path)});
+    if (!shards.back().summary.contains("shard")) {
+      throw InputError(path.string() + ": no 'shard': not the output of slamkit suite --shard K/N");
+    }
+  }
+  try {
+    return MergeSuiteShards(shards);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("merge: a shard's summary.json lacks a key or has a wrong "
+                                 "type: {}", e.what()));
+  }
+}
+
+// The suite's shards: their runs' folders copied, the summary and contact sheet of all of them.
+int RunSuiteMerge(const MergeOptions& o) {
+  const MergedSuite merged = MergeSuites(o.shards);
+  OutputDir output(o.out);
+  const fs::path& dir = output.staging();
+  for (const std::string& shard : o.shards) {
+    if (fs::exists(fs::path(shard) / "runs")) {
+      fs::copy(fs::path(shard) / "runs", dir / "runs", fs::copy_options::recursive);
+    }
+  }
+  const std::string title = "slamkit suite: " + merged.study.value("manifest", std::string());
+  if (!o.no_figures) WriteSuiteContactSheet(dir, merged.records, title);
+  WriteSuiteSummary(dir, title, merged.records);
+  output.Commit();
+  int failed = 0;
+  for (const SuiteRunRecord& r : merged.records) failed += r.failure.empty() ? 0 : 1;
+  fmt::print("merged {} suite shards: {} runs, {} failed\nwrote {}\n", o.shards.size(),
+             merged.records.size(), failed, o.out);
+  return failed > 0 ? 1 : 0;
+}
+
 int RunMergeCommand(const MergeOptions& o) {
+  if (IsSuiteOutput(o.shards.front())) return RunSuiteMerge(o);
   std::vector<SavedMonteCarloShard> shards;
   for (const std::string& dir : o.shards) shards.push_back(ReadShard(dir));
   const MergedMonteCarlo merged = Merge(shards);
@@ -109,9 +156,9 @@ int RunMergeCommand(const MergeOptions& o) {
 void RegisterMerge(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<MergeOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "merge", "the output folders of `slamkit mc --shard K/N` (K = 1..N, in any order) joined "
-               "into the unsharded run's: the same metrics.json (step times aside), run folders "
-               "and consistency.csv");
+      "merge", "the output folders of `slamkit mc --shard K/N` or `slamkit suite --shard K/N` "
+               "(K = 1..N, in any order) joined into the unsharded run's: the same metrics.json "
+               "or summary.json (times and memory aside) and run folders");
   AddExamples(cmd, {"out/default_1 out/default_2 --out out/default_merged   # after both "
                     "examples of slamkit mc --help"});
   cmd->add_option("shards", o->shards, "the shard output folders")

@@ -26,6 +26,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "output_dir.hpp"
+#include "suite_sheet.hpp"
 #include "progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
@@ -33,6 +34,7 @@
 #include "slamkit/io/trajectory_reader.hpp"
 #include "slamkit/report/figures.hpp"
 #include "slamkit/runners/grid/suite_manifest.hpp"
+#include "slamkit/runners/common/shard.hpp"
 #include "slamkit/runners/grid/suite_summary.hpp"
 
 extern char** environ;
@@ -52,6 +54,7 @@ struct SuiteOptions {
   std::string config;  // the grid filter's parameters, for every run
   std::string logs;    // comma-separated names: only these logs (empty: all)
   std::string backend = "rbpf";  // rbpf, graph or both
+  std::string shard;             // K/N; empty: every run
   std::string out;
 };
 
@@ -175,42 +178,6 @@ std::vector<SuiteRunRecord> RunJobs(const std::vector<SuiteJob>& all, int jobs) 
   return records;
 }
 
-// The panel of one run: its map and path, titled with its headline figure; a run whose outputs
-// are missing or unreadable is a failed panel.
-MapSheetPanel PanelOf(const SuiteRunRecord& r, const fs::path& run_dir) {
-  MapSheetPanel panel;
-  std::string figure;
-  if (r.metrics.is_object() && r.metrics.contains("ate_rmse_m")) {
-    figure = fmt::format(": ATE {:.3f} m", r.metrics["ate_rmse_m"].get<double>());
-  } else if (r.metrics.is_object() && r.metrics.contains("relations_trans_mean_m")) {
-    figure = fmt::format(": relations {:.3f} m", r.metrics["relations_trans_mean_m"].get<double>());
-  }
-  const std::string run = r.backend == "graph" ? "graph" : fmt::format("seed {}", r.seed);
-  panel.title = fmt::format("{} {}{}", r.log, run, r.failure.empty() ? figure : ": failed");
-  panel.failed = !r.failure.empty();
-  if (panel.failed) return panel;
-  try {
-    panel.map = ReadOccupancyImage(run_dir / "map.yaml");
-    panel.path = ReadTrajectory(run_dir / "trajectory.tum");
-    panel.secondary_path = ReadTrajectory(run_dir / "odometry.tum");
-  } catch (const std::exception&) {
-    panel.failed = true;
-  }
-  return panel;
-}
-
-// DIR/maps.png: every run's map with its path (and, dimmer, the raw odometry), so that a broken
-// map is seen at a glance.
-void WriteContactSheet(const fs::path& dir, const std::vector<SuiteJob>& jobs,
-                       const std::vector<SuiteRunRecord>& records, const std::string& title) {
-  MapSheetData sheet;
-  sheet.title = title;
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    sheet.panels.push_back(PanelOf(records[i], jobs[i].out));
-  }
-  WriteMapContactSheet(dir / "maps.png", sheet);
-}
-
 // The manifest's logs named in `names` ("a,b"; empty: all of them), in the manifest's order.
 std::vector<const SuiteLog*> SelectLogs(const SuiteManifest& manifest, const std::string& names,
                                         const std::string& manifest_path) {
@@ -233,20 +200,13 @@ std::vector<const SuiteLog*> SelectLogs(const SuiteManifest& manifest, const std
   return out;
 }
 
-int RunSuiteCommand(const SuiteOptions& o) {
-  const SuiteManifest manifest = LoadSuiteManifest(o.manifest, o.root);
-  const std::vector<const SuiteLog*> logs = SelectLogs(manifest, o.logs, o.manifest);
-  const std::vector<std::uint64_t> seeds = ParseSeeds(o.seeds);
-  OutputDir output(o.out);
-  const fs::path& dir = output.staging();
-  const int parallel = o.jobs > 0 ? o.jobs : UsableCpuCount();
-  const int threads = std::max(1, UsableCpuCount() / parallel);
-  // Each log with the particle filter for every seed and, after them, with the graph once (it
-  // draws no random numbers: a seed changes nothing).
+// Every run of the study, in its order: each log with the particle filter for every seed and,
+// after them, with the graph once (it draws no random numbers: a seed changes nothing).
+std::vector<SuiteJob> AllJobs(const SuiteOptions& o, const std::vector<const SuiteLog*>& logs,
+                              const std::vector<std::uint64_t>& seeds, const fs::path& dir) {
   std::vector<SuiteJob> jobs;
   for (const SuiteLog* log : logs) {
     const fs::path runs = dir / "runs" / log->name;
-    fs::create_directories(runs);
     if (o.backend != "graph") {
       for (std::uint64_t seed : seeds) {
         jobs.push_back({log, "rbpf", seed, runs / fmt::format("seed_{}", seed),
@@ -257,16 +217,55 @@ int RunSuiteCommand(const SuiteOptions& o) {
       jobs.push_back({log, "graph", seeds.front(), runs / "graph", runs / "graph.txt", {}});
     }
   }
-  for (SuiteJob& job : jobs) job.args = GridArgs(o, job, threads);
+  return jobs;
+}
+
+// summary.json's "shard": which part of which study this output holds (slamkit merge checks it).
+nlohmann::json ShardJson(const SuiteOptions& o, const Shard& shard, const ShardRange& range,
+                         const std::vector<SuiteJob>& jobs, const std::vector<std::uint64_t>& seeds) {
+  nlohmann::json names = nlohmann::json::array();
+  for (const SuiteJob& job : jobs) {
+    names.push_back(fmt::format("{}/{}/{}", job.log->name, job.backend, job.seed));
+  }
+  return {{"index", shard.index}, {"count", shard.count}, {"first_job", range.begin},
+          {"end_job", range.end}, {"jobs", names},
+          {"study", {{"manifest", o.manifest}, {"seeds", seeds}, {"backend", o.backend},
+                     {"logs", o.logs}, {"particles", o.particles}, {"max_scans", o.max_scans},
+                     {"config", o.config}}}};
+}
+
+int RunSuiteCommand(const SuiteOptions& o) {
+  const SuiteManifest manifest = LoadSuiteManifest(o.manifest, o.root);
+  const std::vector<const SuiteLog*> logs = SelectLogs(manifest, o.logs, o.manifest);
+  const std::vector<std::uint64_t> seeds = ParseSeeds(o.seeds);
+  const Shard shard = o.shard.empty() ? Shard{} : ParseShard(o.shard);
+  OutputDir output(o.out);
+  const fs::path& dir = output.staging();
+  const std::vector<SuiteJob> all = AllJobs(o, logs, seeds, dir);
+  if (shard.count > static_cast<int>(all.size())) {
+    throw CLI::ValidationError("--shard", fmt::format("{} parts of {} runs: N must be at most "
+                                                      "the number of runs", shard.count, all.size()));
+  }
+  const ShardRange range = RangeOfShard(static_cast<int>(all.size()), shard);
+  std::vector<SuiteJob> jobs(all.begin() + range.begin, all.begin() + range.end);
+  const int parallel = o.jobs > 0 ? o.jobs : UsableCpuCount();
+  const int threads = std::max(1, UsableCpuCount() / parallel);
+  for (SuiteJob& job : jobs) {
+    fs::create_directories(job.out.parent_path());
+    job.args = GridArgs(o, job, threads);
+  }
   const std::vector<SuiteRunRecord> records = RunJobs(jobs, parallel);
   const std::string title = fmt::format("slamkit suite: {}", o.manifest);
-  WriteSuiteSummary(dir, title, records);
-  WriteContactSheet(dir, jobs, records, title);
+  WriteSuiteSummary(dir, title, records,
+                    shard.whole() ? nlohmann::json() : ShardJson(o, shard, range, all, seeds));
+  WriteSuiteContactSheet(dir, records, title);
   output.Commit();
   int failed = 0;
   for (const SuiteRunRecord& r : records) failed += r.failure.empty() ? 0 : 1;
   const std::string graph_runs = o.backend == "rbpf" ? "" : " + 1 graph";
-  fmt::print("{} runs ({} logs x {} seeds{}), {} failed\nwrote {}\n", records.size(),
+  const std::string part =
+      shard.whole() ? "" : fmt::format(" of shard {}/{}", shard.index, shard.count);
+  fmt::print("{} runs{} ({} logs x {} seeds{}), {} failed\nwrote {}\n", records.size(), part,
              logs.size(), o.backend == "graph" ? 0 : seeds.size(), graph_runs, failed, o.out);
   return failed > 0 ? 1 : 0;
 }
@@ -295,6 +294,10 @@ void RegisterSuite(CLI::App& app, int& exit_code) {
                   "(it draws no random numbers); both: each log with both, side by side")
       ->check(CLI::IsMember({"rbpf", "graph", "both"}))->capture_default_str();
   cmd->add_option("--logs", o->logs, "only these logs of the manifest: NAME[,NAME...]");
+  cmd->add_option("--shard", o->shard,
+                  "K/N: run only the K-th of N contiguous parts of the log x seed runs (slamkit "
+                  "merge joins the N output folders into the unsharded suite's)")
+      ->check(ShardText());
   cmd->add_option("--max-scans", o->max_scans, "use only each log's first N scans (0: all)")
       ->check(NonNegativeNumber());
   cmd->add_option("--jobs", o->jobs, "runs at once (0: the CPUs this process may use)")

@@ -116,5 +116,57 @@ TEST(MergeCli, ShardsThatAreNotOneStudyAreRefused) {
   EXPECT_FALSE(fs::exists(dir / "bad"));
 }
 
+// summary.json without what differs from run to run: times and memory.
+nlohmann::json SuiteWithoutTimes(const fs::path& dir) {
+  nlohmann::json m = nlohmann::json::parse(std::ifstream(dir / "summary.json"));
+  for (nlohmann::json& run : m["runs"]) {
+    for (const char* key : {"wall_time_s", "peak_rss_mib"}) run.erase(key);
+    nlohmann::json& metrics = run["metrics"];
+    for (const char* key : {"wall_time_s", "peak_rss_mib", "scans_per_s"}) metrics.erase(key);
+    if (metrics.contains("graph")) {
+      metrics["graph"].erase("optimization_time_s");
+      metrics["graph"].erase("search_time_s");
+    }
+  }
+  for (nlohmann::json& log : m["logs"]) {
+    log.erase("wall_time_s");
+    log.erase("peak_rss_mib");
+  }
+  return m;
+}
+
+// A suite's log x seed runs (both back ends) in two shards, merged: the unsharded summary and
+// every run's folder.
+TEST(MergeCli, TwoShardsOfASuiteGiveTheWholeSuite) {
+  const std::string carmen = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/suite/edmonton.log.gz";
+  if (!fs::exists(carmen)) GTEST_SKIP() << "no suite logs";
+  const fs::path dir = FreshDir("merge_suite");
+  const std::string suite = "suite --manifest " + Config("carmen_suite.yaml") +
+                            " --logs edmonton --seeds 1-2 --backend both --max-scans 10 "
+                            "--out ";
+  ASSERT_EQ(RunCli(suite + (dir / "whole").string()).exit_code, 0);
+  for (const char* k : {"1", "2"}) {  // the runs seed 1, seed 2, graph: one, then two
+    const CliResult r = RunCli(suite + (dir / k).string() + " --shard " + k + "/2");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(std::string(k == std::string("1") ? "1" : "2") + " runs of shard " +
+                            k + "/2"), std::string::npos) << r.output;
+  }
+  const CliResult merged = RunCli("merge " + (dir / "2").string() + " " + (dir / "1").string() +
+                                  " --out " + (dir / "merged").string());
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+  const nlohmann::json whole = SuiteWithoutTimes(dir / "whole");
+  ASSERT_EQ(whole["runs"].size(), 3u);
+  EXPECT_EQ(whole, SuiteWithoutTimes(dir / "merged"));
+  for (const char* run : {"edmonton/seed_2", "edmonton/graph"}) {
+    const fs::path trajectory = fs::path("runs") / run / "trajectory.tum";
+    EXPECT_EQ(Text(dir / "whole" / trajectory), Text(dir / "merged" / trajectory)) << run;
+  }
+  EXPECT_TRUE(fs::exists(dir / "merged" / "maps.png"));
+  const CliResult missing = RunCli("merge " + (dir / "1").string() + " --out " +
+                                   (dir / "missing").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("shard 2/2 is missing"), std::string::npos) << missing.output;
+}
+
 }  // namespace
 }  // namespace slamkit::testing

@@ -180,9 +180,11 @@ std::string PerRunTable(const std::vector<SuiteRunRecord>& runs) {
 }  // namespace
 
 void WriteSuiteSummary(const std::filesystem::path& dir, const std::string& title,
-                       const std::vector<SuiteRunRecord>& runs) {
+                       const std::vector<SuiteRunRecord>& runs, const nlohmann::json& shard) {
   WriteFileAtomically(dir / "summary.csv", SummaryCsv(runs));
-  WriteJson(dir / "summary.json", SuiteSummaryJson(runs));
+  nlohmann::json summary = SuiteSummaryJson(runs);
+  if (!shard.is_null()) summary["shard"] = shard;
+  WriteJson(dir / "summary.json", summary);
   const std::string md = fmt::format(
       "# {}\n\nATE after rigid alignment against each log's reference; relations as Kümmerle et "
       "al. 2009. Odometry: the log's raw odometry scored the same way.\n\n## Per log\n\n{}\n"

@@ -32,7 +32,9 @@ nlohmann::json SuiteSummaryJson(const std::vector<SuiteRunRecord>& runs);
 
 // Writes DIR/summary.csv (one row per run), DIR/summary.json and DIR/summary.md (a table per run
 // and one per log, odometry beside the estimate), each atomically.
+// A shard's output (`--shard K/N`) gives `shard`, written to summary.json as its "shard" key.
 void WriteSuiteSummary(const std::filesystem::path& dir, const std::string& title,
-                       const std::vector<SuiteRunRecord>& runs);
+                       const std::vector<SuiteRunRecord>& runs,
+                       const nlohmann::json& shard = nullptr);
 
 }  // namespace slamkit
