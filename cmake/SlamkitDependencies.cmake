@@ -14,6 +14,8 @@ find_package(Boost 1.74 REQUIRED)  # header-only parts: Boost.Math
 find_package(PNG REQUIRED)
 find_package(ZLIB REQUIRED)
 find_package(Ceres REQUIRED)  # optim: sparse non-linear least squares (libceres-dev)
+# io's ROS 1 bag reader (cmake/FindSlamkitRosbag.cmake): slamkit::rosbag.
+find_package(SlamkitRosbag REQUIRED)
 
 if(SLAMKIT_BUILD_REPORT)
   # MathGL, for the report module only (cmake/FindSlamkitMathGL.cmake): slamkit::mathgl.

@@ -14,7 +14,8 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/slamkitConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/slamkitConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 set(slamkit_config_files ${PROJECT_BINARY_DIR}/slamkitConfig.cmake
-                         ${PROJECT_BINARY_DIR}/slamkitConfigVersion.cmake)
+                         ${PROJECT_BINARY_DIR}/slamkitConfigVersion.cmake
+                         ${PROJECT_SOURCE_DIR}/cmake/FindSlamkitRosbag.cmake)
 if("report" IN_LIST SLAMKIT_INSTALLED_MODULES)
   list(APPEND slamkit_config_files ${PROJECT_SOURCE_DIR}/cmake/FindSlamkitMathGL.cmake)
 endif()

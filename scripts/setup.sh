@@ -15,7 +15,9 @@ cd "$(dirname "$0")/.."
 packages=(g++ cmake ninja-build pkg-config ccache libeigen3-dev libgtest-dev libgmock-dev
           libbenchmark-dev libcli11-dev libyaml-cpp-dev libfmt-dev libspdlog-dev
           nlohmann-json3-dev libtbb-dev libboost-dev libboost-math-dev libboost-iostreams-dev
-          zlib1g-dev libpng-dev libmgl-dev libceres-dev time clang libclang-rt-14-dev)
+          zlib1g-dev libpng-dev libmgl-dev libceres-dev time clang libclang-rt-14-dev
+          librosbag-dev pluginlib-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
+          python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -82,9 +82,9 @@ int RunFeaturesCommand(FeaturesOptions o) {
   AddLogInputMetrics(o.input, log, eval, metrics);
 
   const std::filesystem::path& dir = output.staging();
-  WriteFeatureOutputs(dir, result, odometry, std::filesystem::path(o.input.log).filename());
+  WriteFeatureOutputs(dir, result, odometry, std::filesystem::path(o.input.source()).filename());
   WriteJson(dir / "metrics.json", metrics);
-  PrintFeatureRun(o.input.log, result, o.params);
+  PrintFeatureRun(o.input.source(), result, o.params);
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
   return ReportEvaluation(o.input, eval, o.out);

@@ -112,12 +112,12 @@ int RunGridCommand(const GridOptions& o) {
                     ScoringOf(o.input));
 
   const std::filesystem::path& dir = output.staging();
-  const std::string title = std::filesystem::path(o.input.log).filename().string();
+  const std::string title = std::filesystem::path(o.input.source()).filename().string();
   if (const int moved = WriteGridOutputs(dir, result, odometry, title); moved > 0) {
     PrintStderr("warning: {}: its scan timestamps cannot pair poses ({}): pair by index; "
                 "trajectory.tum's {} such times were pushed forward in 1 µs steps for TUM "
                 "readers, trajectory.txt keeps the log's\n",
-                o.input.log, TimestampProblem(result.trajectory), moved);
+                o.input.source(), TimestampProblem(result.trajectory), moved);
   }
   nlohmann::json metrics = RunMetrics(o, log, result, params, eval);
   if (predictive) {
@@ -125,7 +125,7 @@ int RunGridCommand(const GridOptions& o) {
     WritePredictionOutputs(dir, result, predictive->hypotheses, predictive->predicted);
   }
   WriteJson(dir / "metrics.json", metrics);
-  PrintGridRun(o.input.log, result, params.rbpf.particles);
+  PrintGridRun(o.input.source(), result, params.rbpf.particles);
   if (eval.relations) PrintRelations(*eval.relations);
   output.Commit();
   return ReportEvaluation(o.input, eval, o.out);

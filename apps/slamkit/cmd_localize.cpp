@@ -78,7 +78,7 @@ int RunLocalizeCommand(const LocalizeOptions& o) {
   figure.columns = 1;
   figure.panel_px = 1200;
   figure.panels.push_back(
-      {std::filesystem::path(o.input.log).filename().string() + " localised on " +
+      {std::filesystem::path(o.input.source()).filename().string() + " localised on " +
            std::filesystem::path(o.map).filename().string(),
        map, result.trajectory, {}});
   WriteMapContactSheet(dir / "path.png", figure);
@@ -91,7 +91,7 @@ int RunLocalizeCommand(const LocalizeOptions& o) {
   if (!o.config.empty()) metrics["config"] = o.config;
   AddLogInputMetrics(o.input, log, eval, metrics);
   WriteJson(dir / "metrics.json", metrics);
-  fmt::print("{}: {} scans, {} updates, {:.0f} particles on average, {:.1f} s\n", o.input.log,
+  fmt::print("{}: {} scans, {} updates, {:.0f} particles on average, {:.1f} s\n", o.input.source(),
              result.scans, result.updates, result.mean_particles, result.wall_time_s);
   if (result.settled_scan) {
     fmt::print("  converged at scan {} (t = {:.2f} s) and stayed converged\n",

@@ -16,9 +16,29 @@
 namespace slamkit::app {
 
 void AddLogInputOptions(CLI::App* cmd, LogInput& in) {
-  cmd->add_option("--log", in.log, "CARMEN log (.clf/.log, optionally gzip-compressed)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  CLI::Option* log = cmd->add_option("--log", in.log,
+                                     "CARMEN log (.clf/.log, optionally gzip-compressed)")
+                          ->check(CLI::ExistingFile);
+  cmd->add_option("--bag", in.bag, "ROS 1 bag (sensor_msgs/LaserScan, nav_msgs/Odometry or /tf) "
+                                   "instead of --log")
+      ->check(CLI::ExistingFile)
+      ->excludes(log);
+  cmd->add_option("--scan-topic", in.bag_topics.scan_topic, "--bag: the LaserScan topic")
+      ->capture_default_str();
+  cmd->add_option("--odom-topic", in.bag_topics.odom_topic, "--bag: the Odometry topic")
+      ->capture_default_str();
+  cmd->add_flag("--tf", in.bag_topics.odometry_from_tf,
+                "--bag: the odometry from /tf's --odom-frame -> --base-frame transforms");
+  cmd->add_option("--odom-frame", in.bag_topics.odom_frame, "--bag: the odometry frame")
+      ->capture_default_str();
+  cmd->add_option("--base-frame", in.bag_topics.base_frame, "--bag: the robot's frame")
+      ->capture_default_str();
+  // Checked with the options, before a --dry-run stops or the command runs.
+  cmd->parse_complete_callback([&in] {
+    if (in.log.empty() == in.bag.empty()) {
+      throw CLI::RequiredError("exactly one of --log and --bag");
+    }
+  });
   cmd->add_option("--relations", in.relations, "relations file (Kümmerle et al. 2009)")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--skip-bad-lines", in.skip_bad_lines, "skip malformed log lines (counted)");
@@ -54,12 +74,21 @@ CarmenLog ReadInputLog(const LogInput& in) {
   read_options.skip_bad_lines = in.skip_bad_lines;
   read_options.odometry_from_scan_fields = !in.interpolate_odometry;
   if (in.max_range_m > 0.0) read_options.max_range_m = in.max_range_m;
-  CarmenLog log = ReadCarmenLog(in.log, read_options);
+  CarmenLog log;
+  if (in.bag.empty()) {
+    log = ReadCarmenLog(in.log, read_options);
+  } else {
+    RosBagReadOptions bag = in.bag_topics;
+    bag.max_range_m = read_options.max_range_m;
+    log = ReadRosBag(in.bag, bag);
+  }
   if (in.max_scans > 0 && static_cast<int>(log.scans.size()) > in.max_scans) {
     log.scans.resize(in.max_scans);
   }
-  if (log.skipped_lines > 0) PrintStderr("{}: skipped {} bad lines\n", in.log, log.skipped_lines);
-  for (const std::string& note : log.notes) PrintStderr("{}: {}\n", in.log, note);
+  if (log.skipped_lines > 0) {
+    PrintStderr("{}: skipped {} bad lines\n", in.source(), log.skipped_lines);
+  }
+  for (const std::string& note : log.notes) PrintStderr("{}: {}\n", in.source(), note);
   return log;
 }
 
@@ -80,7 +109,7 @@ std::optional<Trajectory> LoadReference(const LogInput& in, const CarmenLog& log
           "so the filter is "
           "given the reference as its odometry and this comparison "
           "measures nothing\n",
-          in.log);
+          in.source());
     }
     return LoggedTrajectory(log);
   }
@@ -94,7 +123,7 @@ std::optional<Trajectory> LoadReference(const LogInput& in, const CarmenLog& log
       throw InputError(
           fmt::format("{}: {} poses for the {} scans of {} (--pair-by index pairs "
                       "pose i with scan i)",
-                      in.reference, reference.size(), log.scans.size(), in.log));
+                      in.reference, reference.size(), log.scans.size(), in.source()));
     }
   } else if (const std::string problem = TimestampProblem(reference); !problem.empty()) {
     throw InputError(fmt::format("{}: its timestamps cannot pair poses ({}): use --pair-by index",
@@ -105,7 +134,7 @@ std::optional<Trajectory> LoadReference(const LogInput& in, const CarmenLog& log
 
 void AddLogInputMetrics(const LogInput& in, const CarmenLog& log, const LogEvaluation& e,
                         nlohmann::json& metrics) {
-  metrics["log"] = in.log;
+  metrics["log"] = in.source();
   if (!in.reference.empty()) {
     metrics["reference"] = in.reference;
     metrics["pair_by"] = in.pair_by == PairBy::kIndex ? "index" : "time";

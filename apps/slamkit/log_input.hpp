@@ -10,6 +10,7 @@
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/eval/trajectory_errors.hpp"
 #include "slamkit/io/carmen_reader.hpp"
+#include "slamkit/io/rosbag_reader.hpp"
 #include "slamkit/runners/common/log_scoring.hpp"
 
 namespace slamkit::app {
@@ -18,6 +19,8 @@ namespace slamkit::app {
 // reading, the reference poses and relations it is scored against, and that scoring.
 struct LogInput {
   std::string log;
+  std::string bag;  // a ROS 1 bag instead of --log
+  RosBagReadOptions bag_topics;
   std::string relations;
   std::string reference;
   PairBy pair_by = PairBy::kTime;
@@ -26,13 +29,16 @@ struct LogInput {
   bool interpolate_odometry = false;
   int max_scans = 0;         // 0: all
   double max_range_m = 0.0;  // 0: from the log
+
+  const std::string& source() const { return bag.empty() ? log : bag; }  // the file read
 };
 
-// --log, --relations, --reference, --pair-by, --reference-from-log, --skip-bad-lines,
-// --max-scans, --max-range and --interpolate-odometry.
+// --log or --bag (with --scan-topic, --odom-topic, --tf, --odom-frame, --base-frame),
+// --relations, --reference, --pair-by, --reference-from-log, --skip-bad-lines, --max-scans,
+// --max-range and --interpolate-odometry.
 void AddLogInputOptions(CLI::App* cmd, LogInput& input);
 
-// The log as the options say (its first --max-scans scans), with the reader's notes on stderr.
+// The log or bag as the options say (its first --max-scans scans), with the reader's notes on stderr.
 CarmenLog ReadInputLog(const LogInput& input);
 
 // The relations (--relations) and the reference poses (--reference, --reference-from-log), read

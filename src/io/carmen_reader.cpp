@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "carmen_records.hpp"
+#include "odometry_interpolation.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 
@@ -99,22 +100,6 @@ class CarmenParser {
 constexpr double kParamSlackM = 0.01;          // readings written with rounding above the PARAM
 constexpr double kContradictingShare = 0.001;  // more readings than this above it: not a max
 
-// The pose at t_s between the records of `odometry` (sorted by time, not empty) that bracket it:
-// linear in x and y, along the shorter arc in heading; the nearest record outside their span.
-Pose2 InterpolateOdometry(const Trajectory& odometry, double t_s) {
-  const auto after = std::upper_bound(
-      odometry.begin(), odometry.end(), t_s,
-      [](double t, const StampedPose& record) { return t < record.t_s; });
-  if (after == odometry.begin()) return after->pose;
-  if (after == odometry.end()) return odometry.back().pose;
-  const StampedPose& a = *(after - 1);
-  const StampedPose& b = *after;
-  const double s = (t_s - a.t_s) / (b.t_s - a.t_s);  // b.t_s > t_s >= a.t_s
-  return Pose2(a.pose.x() + s * (b.pose.x() - a.pose.x()),
-               a.pose.y() + s * (b.pose.y() - a.pose.y()),
-               a.pose.theta() + s * WrapAngle(b.pose.theta() - a.pose.theta()));
-}
-
 // The PARAM max ranges that the readings contradict (see kContradictingShare): their scans get
 // the range derived from the data instead, and the log says so in its notes.
 void CarmenParser::DropContradictedParams() {
@@ -193,7 +178,7 @@ void CarmenParser::InterpolateScanOdometry() {
   std::size_t unstamped_scans = 0;
   for (LaserScan& scan : log_.scans) {
     if (HasTimestamp(scan.t_s)) {
-      scan.odometry = InterpolateOdometry(stamped, scan.t_s);
+      scan.odometry = io_detail::InterpolateOdometry(stamped, scan.t_s);
     } else {
       ++unstamped_scans;
     }

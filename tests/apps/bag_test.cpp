@@ -1,0 +1,132 @@
+// ROS 1 bags in (issue 31 part 3): a bag written by scripts/ros/carmen_to_bag.py (Debian's
+// python3-rosbag) from the first 2,000 Intel scans, and the same content as a CARMEN log, give
+// the same trajectory; bad bags are refused with the file and the reason, exit 2.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+#include "slamkit/core/angle.hpp"
+
+namespace slamkit::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kCarmen = fs::path(SLAMKIT_DATASETS_DIR) / "carmen";
+
+struct Row {
+  double t, x, y, theta;
+};
+
+// trajectory.txt: `t x y theta` per scan (comment lines skipped).
+std::vector<Row> Rows(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<Row> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    Row r{};
+    fields >> r.t >> r.x >> r.y >> r.theta;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+class Bag : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (!fs::exists(kCarmen / "intel.clf")) return;
+    dir_ = FreshDir("bag");
+    const std::string command =
+        "/usr/bin/python3 " + std::string(SLAMKIT_SOURCE_DIR) + "/scripts/ros/carmen_to_bag.py " +
+        (kCarmen / "intel.clf").string() + " " + (dir_ / "intel.bag").string() +
+        " --max-scans 2000 --robotlaser-log " + (dir_ / "intel_bag.clf").string() + " 2>&1";
+    written_ = std::system(command.c_str()) == 0;
+  }
+  void SetUp() override {
+    if (!fs::exists(kCarmen / "intel.clf")) GTEST_SKIP() << "no intel.clf";
+    ASSERT_TRUE(written_) << "carmen_to_bag.py failed";
+  }
+  static std::string BagPath() { return (dir_ / "intel.bag").string(); }
+
+  static inline fs::path dir_;
+  static inline bool written_ = false;
+};
+
+TEST_F(Bag, GivesTheTrajectoryOfTheSameScansAsACarmenLog) {
+  const std::string relations = " --relations " + (kCarmen / "intel.relations").string();
+  const CliResult bag = RunCli("grid --bag " + BagPath() + relations + " --out " +
+                               (dir_ / "from_bag").string());
+  ASSERT_EQ(bag.exit_code, 0) << bag.output;
+  const CliResult log = RunCli("grid --log " + (dir_ / "intel_bag.clf").string() + relations +
+                               " --out " + (dir_ / "from_log").string());
+  ASSERT_EQ(log.exit_code, 0) << log.output;
+  const std::vector<Row> a = Rows(dir_ / "from_bag" / "trajectory.txt");
+  const std::vector<Row> b = Rows(dir_ / "from_log" / "trajectory.txt");
+  ASSERT_EQ(a.size(), 2000u);
+  ASSERT_EQ(b.size(), a.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].t, b[i].t) << i;
+    worst = std::max({worst, std::abs(a[i].x - b[i].x), std::abs(a[i].y - b[i].y),
+                      std::abs(WrapAngle(a[i].theta - b[i].theta))});
+  }
+  EXPECT_LE(worst, 1e-9);
+  const auto metrics = [&](const char* run) {
+    return nlohmann::json::parse(std::ifstream(dir_ / run / "metrics.json"));
+  };
+  EXPECT_EQ(metrics("from_bag")["log"], BagPath());
+  // The path is a SLAM result, not the odometry: the relations error is the grid filter's.
+  EXPECT_LT(metrics("from_bag")["relations_trans_mean_m"].get<double>(), 0.05);
+}
+
+TEST_F(Bag, TopicsAndFramesAreChecked) {
+  const std::string out = " --out " + (dir_ / "refused").string();
+  const CliResult wrong_type = RunCli("grid --bag " + BagPath() + " --scan-topic /odom" + out);
+  EXPECT_EQ(wrong_type.exit_code, 2);
+  EXPECT_NE(wrong_type.output.find("topic /odom holds nav_msgs/Odometry, not "
+                                   "sensor_msgs/LaserScan"), std::string::npos)
+      << wrong_type.output;
+  const CliResult missing = RunCli("grid --bag " + BagPath() + " --odom-topic /wheel" + out);
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("no topic /wheel (the bag has: "), std::string::npos)
+      << missing.output;
+  EXPECT_NE(missing.output.find("/scan (sensor_msgs/LaserScan)"), std::string::npos);
+  const CliResult no_tf = RunCli("grid --bag " + BagPath() + " --tf" + out);
+  EXPECT_EQ(no_tf.exit_code, 2);
+  EXPECT_NE(no_tf.output.find("no odom -> base_link transform on /tf"), std::string::npos);
+  const CliResult both = RunCli("grid --bag " + BagPath() + " --log " +
+                                (kCarmen / "intel.clf").string() + out);
+  EXPECT_EQ(both.exit_code, 2);
+  const CliResult neither = RunCli("grid" + out);
+  EXPECT_EQ(neither.exit_code, 2);
+  EXPECT_NE(neither.output.find("exactly one of --log and --bag"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "refused"));
+}
+
+TEST_F(Bag, ATruncatedBagOrAnotherFileIsAnInputError) {
+  const fs::path truncated = dir_ / "truncated.bag";
+  {
+    std::ifstream in(BagPath(), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(truncated, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  for (const fs::path& bad : {truncated, kCarmen / "intel.relations"}) {
+    const CliResult r = RunCli("grid --bag " + bad.string() + " --out " +
+                               (dir_ / "refused").string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(bad.string() + ": "), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "refused"));
+  }
+}
+
+}  // namespace
+}  // namespace slamkit::testing
