@@ -40,28 +40,31 @@ std::vector<Row> Rows(const fs::path& path) {
   return rows;
 }
 
+// Each test in its own folder (ctest runs the tests of one program in parallel processes).
 class Bag : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    if (!fs::exists(kCarmen / "intel.clf")) return;
-    dir_ = FreshDir("bag");
-    const std::string command =
-        "/usr/bin/python3 " + std::string(SLAMKIT_SOURCE_DIR) + "/scripts/ros/carmen_to_bag.py " +
-        (kCarmen / "intel.clf").string() + " " + (dir_ / "intel.bag").string() +
-        " --max-scans 2000 --robotlaser-log " + (dir_ / "intel_bag.clf").string() + " 2>&1";
-    written_ = std::system(command.c_str()) == 0;
-  }
   void SetUp() override {
     if (!fs::exists(kCarmen / "intel.clf")) GTEST_SKIP() << "no intel.clf";
-    ASSERT_TRUE(written_) << "carmen_to_bag.py failed";
+    dir_ = FreshDir(std::string("bag_") +
+                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
   }
-  static std::string BagPath() { return (dir_ / "intel.bag").string(); }
+  // intel.bag from the first `scans` scans of intel.clf (and intel_bag.clf, its content as a
+  // CARMEN log); false when the script failed.
+  bool WriteBag(int scans) const {
+    const std::string command =
+        "/usr/bin/python3 " + std::string(SLAMKIT_SOURCE_DIR) + "/scripts/ros/carmen_to_bag.py " +
+        (kCarmen / "intel.clf").string() + " " + BagPath() + " --max-scans " +
+        std::to_string(scans) + " --robotlaser-log " + (dir_ / "intel_bag.clf").string() +
+        " >/dev/null 2>&1";
+    return std::system(command.c_str()) == 0;
+  }
+  std::string BagPath() const { return (dir_ / "intel.bag").string(); }
 
-  static inline fs::path dir_;
-  static inline bool written_ = false;
+  fs::path dir_;
 };
 
 TEST_F(Bag, GivesTheTrajectoryOfTheSameScansAsACarmenLog) {
+  ASSERT_TRUE(WriteBag(2000)) << "scripts/ros/carmen_to_bag.py failed";
   const std::string relations = " --relations " + (kCarmen / "intel.relations").string();
   const CliResult bag = RunCli("grid --bag " + BagPath() + relations + " --out " +
                                (dir_ / "from_bag").string());
@@ -89,6 +92,7 @@ TEST_F(Bag, GivesTheTrajectoryOfTheSameScansAsACarmenLog) {
 }
 
 TEST_F(Bag, TopicsAndFramesAreChecked) {
+  ASSERT_TRUE(WriteBag(50)) << "scripts/ros/carmen_to_bag.py failed";
   const std::string out = " --out " + (dir_ / "refused").string();
   const CliResult wrong_type = RunCli("grid --bag " + BagPath() + " --scan-topic /odom" + out);
   EXPECT_EQ(wrong_type.exit_code, 2);
@@ -113,6 +117,7 @@ TEST_F(Bag, TopicsAndFramesAreChecked) {
 }
 
 TEST_F(Bag, ATruncatedBagOrAnotherFileIsAnInputError) {
+  ASSERT_TRUE(WriteBag(50)) << "scripts/ros/carmen_to_bag.py failed";
   const fs::path truncated = dir_ / "truncated.bag";
   {
     std::ifstream in(BagPath(), std::ios::binary);
