@@ -17,7 +17,8 @@ packages=(g++ cmake ninja-build pkg-config ccache libeigen3-dev libgtest-dev lib
           nlohmann-json3-dev libtbb-dev libboost-dev libboost-math-dev libboost-iostreams-dev
           zlib1g-dev libpng-dev libmgl-dev libceres-dev time clang libclang-rt-14-dev
           librosbag-dev pluginlib-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
-          python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs)
+          python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
+          pybind11-dev python3-dev python3-numpy python3-pytest)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -36,7 +37,7 @@ flavour=${1:-release}
 targets=("$@")
 env_args=()
 case "$flavour" in
-  release) args=(-DCMAKE_BUILD_TYPE=Release) ;;
+  release) args=(-DCMAKE_BUILD_TYPE=Release -DSLAMKIT_BUILD_PYTHON=ON) ;;
   # -O1 rather than Debug's -O0: the same tests ran 15 times slower at -O0 under ASan than in
   # Release, and -O1 is what the sanitizers' authors advise; -g1 keeps file and line in every
   # report at a fraction of full debug information's compile and link time. clang, because

@@ -3,15 +3,16 @@
 # something: in the sanitizer build (clang, ASan and UBSan at -O1, asserts on) every test but
 # those labelled `slow` and those that run the program; in the Release build (GCC, -O3,
 # -march=native: what users run) the slow ones and those labelled `release` (the toolchain and
-# processor checks, the command-line tests), then the installed
-# package (examples/cpp built against it); last, a short libFuzzer smoke run of every input
-# reader's harness (fuzz/, scripts/fuzz.sh) from the sanitizer build. Each step prints its time.
+# processor checks, the command-line tests), then the installed package (examples/cpp built
+# against it; the Python module's tests and examples); last, a short libFuzzer smoke run of every
+# input reader's harness (fuzz/, scripts/fuzz.sh) from the sanitizer build. Each step prints its
+# time.
 # `ctest` in build/release runs every test in Release too (scripts/setup.sh release builds them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 start=$SECONDS
 step() { echo "test: $1 done at $((SECONDS - start)) s"; }
-scripts/setup.sh release slamkit slamkit_bench slamkit_release_tests
+scripts/setup.sh release slamkit slamkit_bench slamkit_release_tests slamkit_python
 step "release build"
 (cd build/release && ctest --output-on-failure -j "$(nproc)" -L 'slow|release')
 step "release tests"
@@ -26,6 +27,12 @@ for program in ekf_landmarks grid_laser; do
   printf '%s:\n%s\n' "$program" "$output"
   grep -q "^final pose:" <<<"$output" || { echo "test: $program printed no final pose" >&2; exit 1; }
 done
+# The Python module as installed (lib/python3/dist-packages under the prefix), under Debian's
+# python3 with its numpy and pytest: the tests against the program, then the two examples.
+export PYTHONPATH=$prefix/lib/python3/dist-packages SLAMKIT_CLI=$PWD/build/release/bin/slamkit
+/usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
+for example in examples/python/*.py; do /usr/bin/python3 "$example"; done
+unset PYTHONPATH SLAMKIT_CLI
 step "installed package"
 scripts/setup.sh asan
 step "sanitizer build"

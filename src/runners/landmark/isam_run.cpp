@@ -190,8 +190,7 @@ IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params) 
   return out;
 }
 
-IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
-                                FastSlamParams fastslam) {
+FastSlamParams IsamFastSlamParams(const IsamRunParams& params, FastSlamParams fastslam) {
   const AssociationParams& ekf = params.ekf.association;
   fastslam.known_association = params.ekf.known_association();
   fastslam.new_landmark_test = params.fastslam.new_landmark_test;
@@ -200,6 +199,12 @@ IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
   // Delayed sampling serves each particle's own association; with the file's ids it is not used.
   fastslam.delayed_sampling = params.fastslam.delayed_sampling && !fastslam.known_association;
   fastslam.window_max_landmarks = params.fastslam.window_max_landmarks;
+  return fastslam;
+}
+
+IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
+                                FastSlamParams fastslam) {
+  fastslam = IsamFastSlamParams(params, fastslam);
   FastSlam filter(fastslam, std::make_unique<OdometryModel>(),
                   std::make_unique<RelativePointModel>());
   return RunFilterOnIsam(filter, log, params, fastslam.known_association);

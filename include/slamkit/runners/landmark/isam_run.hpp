@@ -115,6 +115,9 @@ IsamRunResult RunEkfSlamOnIsam(const IsamLog& log, const IsamRunParams& params);
 // params.fastslam.new_landmark_test with params.fastslam's gates, the EKF's where unset.
 IsamRunResult RunFastSlamOnIsam(const IsamLog& log, const IsamRunParams& params,
                                 FastSlamParams fastslam);
+// `fastslam` (proposal, particles, threads, seed) with the association and sampling settings
+// RunFastSlamOnIsam gives it from `params`.
+FastSlamParams IsamFastSlamParams(const IsamRunParams& params, FastSlamParams fastslam);
 // Any point-landmark filter whose motion model takes the file's increments (dx, dy, dθ) as its
 // control and whose sensor takes the sightings as they are (x forward, y left); the file's ids
 // are given to it only with `known_association`. params.ekf is used for the merged reference only.
