@@ -18,7 +18,7 @@ packages=(g++ cmake ninja-build pkg-config ccache libeigen3-dev libgtest-dev lib
           zlib1g-dev libpng-dev libmgl-dev libceres-dev time clang libclang-rt-14-dev
           librosbag-dev pluginlib-dev libsensor-msgs-dev libnav-msgs-dev libtf2-msgs-dev
           python3-rosbag python3-sensor-msgs python3-nav-msgs python3-tf2-msgs
-          pybind11-dev python3-dev python3-numpy python3-pytest)
+          pybind11-dev python3-dev python3-numpy python3-pytest chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -21,5 +21,6 @@ void RegisterMapDiff(CLI::App& app, int& exit_code);
 void RegisterPoseGraph(CLI::App& app, int& exit_code);
 void RegisterLocalize(CLI::App& app, int& exit_code);
 void RegisterMerge(CLI::App& app, int& exit_code);
+void RegisterReport(CLI::App& app, int& exit_code);
 
 }  // namespace slamkit::app

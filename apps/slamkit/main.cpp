@@ -61,6 +61,7 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterPoseGraph(app, exit_code);
   slamkit::app::RegisterLocalize(app, exit_code);
   slamkit::app::RegisterMerge(app, exit_code);
+  slamkit::app::RegisterReport(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -20,12 +20,6 @@ std::string Config(const std::string& name) {
   return std::string(SLAMKIT_SOURCE_DIR) + "/configs/" + name;
 }
 
-std::string Text(const fs::path& path) {
-  std::ostringstream text;
-  text << std::ifstream(path).rdbuf();
-  return text.str();
-}
-
 // metrics.json without the wall times, which differ from run to run.
 nlohmann::json WithoutTimes(const fs::path& dir) {
   nlohmann::json m = nlohmann::json::parse(std::ifstream(dir / "metrics.json"));
@@ -55,12 +49,12 @@ void ExpectShardsMergeToTheWholeRun(const std::string& name, const std::string& 
   ASSERT_EQ(merged.exit_code, 0) << merged.output;
   const nlohmann::json whole = WithoutTimes(dir / "whole");
   EXPECT_EQ(whole, WithoutTimes(dir / "merged")) << name;
-  EXPECT_EQ(Text(dir / "whole" / "consistency.csv"), Text(dir / "merged" / "consistency.csv"));
-  EXPECT_EQ(Text(dir / "whole" / "world.csv"), Text(dir / "merged" / "world.csv"));
+  EXPECT_EQ(ReadText(dir / "whole" / "consistency.csv"), ReadText(dir / "merged" / "consistency.csv"));
+  EXPECT_EQ(ReadText(dir / "whole" / "world.csv"), ReadText(dir / "merged" / "world.csv"));
   const int runs = whole["runs"].get<int>();
   for (int k = 0; k < runs; ++k) {
     const fs::path run = fs::path("run_" + std::to_string(k)) / "errors.csv";
-    EXPECT_EQ(Text(dir / "whole" / run), Text(dir / "merged" / run)) << run;
+    EXPECT_EQ(ReadText(dir / "whole" / run), ReadText(dir / "merged" / run)) << run;
   }
   // A shard alone is a study of its runs: its figures are not the whole run's.
   const nlohmann::json first = WithoutTimes(dir / "shard1");
@@ -159,7 +153,7 @@ TEST(MergeCli, TwoShardsOfASuiteGiveTheWholeSuite) {
   EXPECT_EQ(whole, SuiteWithoutTimes(dir / "merged"));
   for (const char* run : {"edmonton/seed_2", "edmonton/graph"}) {
     const fs::path trajectory = fs::path("runs") / run / "trajectory.tum";
-    EXPECT_EQ(Text(dir / "whole" / trajectory), Text(dir / "merged" / trajectory)) << run;
+    EXPECT_EQ(ReadText(dir / "whole" / trajectory), ReadText(dir / "merged" / trajectory)) << run;
   }
   EXPECT_TRUE(fs::exists(dir / "merged" / "maps.png"));
   const CliResult missing = RunCli("merge " + (dir / "1").string() + " --out " +
