@@ -39,7 +39,7 @@ std::optional<fs::path> First(const fs::path& dir, std::initializer_list<const c
 
 void AddPath(ReportData& data, const std::optional<fs::path>& file, const char* name,
              const char* color) {
-  if (file) data.paths.push_back({name, color, ReadTrajectory(*file)});
+  if (file) data.paths.push_back({name, color, ReadTrajectory(*file), {}});
 }
 
 // Estimated landmarks (source_id,x_m,y_m,cov_xx,cov_xy,cov_yy) or true ones (id,x_m,y_m).
@@ -57,6 +57,21 @@ void AddLandmarks(ReportData& data, const std::optional<fs::path>& file, bool es
       l.covariance = c;
     }
     data.landmarks.push_back(l);
+  }
+}
+
+// Each estimated pose's position covariance from pose_covariance.csv (one row per step after the
+// start pose, which gets the first row's): used only when the rows pair with the poses.
+void AddPoseCovariances(ReportData& data, const NumericCsv& csv) {
+  const int xx = csv.Column("cov_xx"), xy = csv.Column("cov_xy"), yy = csv.Column("cov_yy");
+  if (data.paths.empty() || xx < 0 || xy < 0 || yy < 0 || csv.rows.empty()) return;
+  ReportPath& estimate = data.paths.front();
+  if (csv.rows.size() + 1 != estimate.poses.size()) return;
+  for (std::size_t i = 0; i < estimate.poses.size(); ++i) {
+    const std::vector<double>& row = csv.rows[i == 0 ? 0 : i - 1];
+    Eigen::Matrix2d c;
+    c << row[xx], row[xy], row[xy], row[yy];
+    estimate.covariances.push_back(c);
   }
 }
 
@@ -83,6 +98,9 @@ ReportData Gather(const fs::path& dir) {
           "#0050c8");
   AddPath(data, First(dir, {"truth.tum", "run_0/truth.tum"}), "truth", "#089000");
   AddPath(data, First(dir, {"odometry.tum"}), "odometry", "#c04040");
+  if (const auto file = First(dir, {"pose_covariance.csv", "run_0/pose_covariance.csv"})) {
+    AddPoseCovariances(data, ReadNumericCsv(*file));
+  }
   if (const auto map = First(dir, {"map.yaml"})) data.map = ReadOccupancyImage(*map);
   AddLandmarks(data, First(dir, {"world.csv"}), false);
   AddLandmarks(data, First(dir, {"map.csv", "run_0/map.csv"}), true);

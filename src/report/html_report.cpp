@@ -23,14 +23,22 @@ std::vector<std::size_t> Decimated(std::size_t n, std::size_t limit) {
 nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 nlohmann::json PathJson(const ReportPath& p, std::size_t limit) {
-  nlohmann::json t = nlohmann::json::array(), x = t, y = t, th = t;
+  nlohmann::json t = nlohmann::json::array(), x = t, y = t, th = t, c = t;
+  const bool with_covariances = p.covariances.size() == p.poses.size();
   for (std::size_t i : Decimated(p.poses.size(), limit)) {
     t.push_back(p.poses[i].t_s);
     x.push_back(p.poses[i].pose.x());
     y.push_back(p.poses[i].pose.y());
     th.push_back(p.poses[i].pose.theta());
+    if (with_covariances) {
+      const Eigen::Matrix2d& m = p.covariances[i];
+      c.push_back({Number(m(0, 0)), Number(m(0, 1)), Number(m(1, 1))});
+    }
   }
-  return {{"name", p.name}, {"color", p.color}, {"t", t}, {"x", x}, {"y", y}, {"th", th}};
+  nlohmann::json out = {{"name", p.name}, {"color", p.color}, {"t", t}, {"x", x}, {"y", y},
+                        {"th", th}};
+  if (with_covariances) out["c"] = c;
+  return out;
 }
 
 nlohmann::json SeriesJson(const ReportSeries& s, std::size_t limit) {

@@ -25,7 +25,7 @@ td.key { color: #555; }
     <canvas id="view" width="720" height="720"></canvas>
     <div id="controls"><button id="play">play</button>
       <input id="slider" type="range" min="0" max="1000" value="1000">
-      <span id="time"></span></div>
+      <span id="time"></span> <span id="pose-sigma"></span></div>
     <div class="legend" id="legend"></div>
   </div>
   <div>
@@ -77,13 +77,15 @@ const timeAt = (fraction) => t0 + fraction * (t1 - t0);
 // The last index of `t` at or before time `t` (t sorted as the run wrote it).
 const lastAt = (ts, t) => { let k = -1; for (let i = 0; i < ts.length; ++i) if (ts[i] <= t) k = i; return k; };
 
-function ellipse(ctx, l) {
-  const [a, b, c] = l.c, m = (a + c) / 2, d = Math.sqrt(((a - c) / 2) ** 2 + b * b);
+// The 2σ ellipse of covariance [cxx, cxy, cyy] at (x, y); returns its semi-axes [m].
+function ellipse(ctx, x, y, cov) {
+  const [a, b, c] = cov, m = (a + c) / 2, d = Math.sqrt(((a - c) / 2) ** 2 + b * b);
   const r1 = 2 * Math.sqrt(Math.max(m + d, 0)), r2 = 2 * Math.sqrt(Math.max(m - d, 0));
   const angle = 0.5 * Math.atan2(2 * b, a - c);
   ctx.beginPath();
-  ctx.ellipse(px(l.x), py(l.y), Math.max(r1 * scale, 1), Math.max(r2 * scale, 1), -angle, 0, 2 * Math.PI);
+  ctx.ellipse(px(x), py(y), Math.max(r1 * scale, 1), Math.max(r2 * scale, 1), -angle, 0, 2 * Math.PI);
   ctx.stroke();
+  return [r1, r2];
 }
 
 function drawView(t) {
@@ -96,7 +98,7 @@ function drawView(t) {
   }
   for (const l of D.landmarks) {
     ctx.strokeStyle = ctx.fillStyle = l.est ? "#d00" : "#555";
-    if (l.est && l.c) ellipse(ctx, l);
+    if (l.est && l.c) ellipse(ctx, l.x, l.y, l.c);
     if (!l.est) ctx.fillRect(px(l.x) - 2, py(l.y) - 2, 4, 4);
     else { ctx.beginPath(); ctx.arc(px(l.x), py(l.y), 1.5, 0, 2 * Math.PI); ctx.fill(); }
   }
@@ -114,6 +116,14 @@ function drawView(t) {
     ctx.lineTo(x + 5 * Math.cos(th - 2.5), y - 5 * Math.sin(th - 2.5));
     ctx.fill();
     timeLabel.textContent = `t = ${(t - t0).toFixed(2)} s (${k + 1}/${main.t.length})`;
+    const sigma = document.getElementById("pose-sigma");
+    if (main.c && main.c[k] && main.c[k].every((v) => v !== null)) {
+      ctx.strokeStyle = "#000"; ctx.lineWidth = 1;
+      const [r1, r2] = ellipse(ctx, main.x[k], main.y[k], main.c[k]);
+      sigma.textContent = `pose 2σ ellipse ${r1.toPrecision(3)} × ${r2.toPrecision(3)} m`;
+    } else {
+      sigma.textContent = "";
+    }
   }
 }
 

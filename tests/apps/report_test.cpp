@@ -3,6 +3,7 @@
 // moves the path, and the screenshots are drawn, not blank.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -89,6 +90,19 @@ TEST_F(Report, TheMonteCarloPageShowsTheMetricsAndMovesWithTheSlider) {
   }();
   ASSERT_EQ(counts.size(), 3u) << time;
   EXPECT_NEAR(std::stod(counts[1]) / std::stod(counts[2]), 0.25, 0.01) << time;
+  // The pose's 2σ ellipse at that time: the filter's covariance after that step
+  // (run_0/pose_covariance.csv; pose k comes after step k, the start before step 1).
+  const int pose = std::stoi(counts[1]) - 1;
+  std::istringstream rows(ReadText(run / "run_0" / "pose_covariance.csv"));
+  std::string row;
+  for (int i = 0; i <= pose && std::getline(rows, row);) ++i;  // header, then rows 1 .. pose
+  double t = 0, xx = 0, xy = 0, xt = 0, yy = 0;
+  char comma = 0;
+  std::istringstream(row) >> t >> comma >> xx >> comma >> xy >> comma >> xt >> comma >> yy;
+  const double major = 2.0 * std::sqrt(0.5 * (xx + yy) + std::hypot(0.5 * (xx - yy), xy));
+  const std::string sigma = ElementText(dom, "pose-sigma");
+  ASSERT_NE(sigma.find("pose 2σ ellipse "), std::string::npos) << sigma;
+  EXPECT_NEAR(std::stod(sigma.substr(sigma.find("ellipse ") + 8)), major, 0.005 * major) << sigma;
   // Drawn: a screenshot at a quarter and one at the end differ, and neither is blank (a blank
   // 1400 x 1000 page compresses to a few kB).
   const fs::path early = dir_ / "early.png", late = dir_ / "late.png";

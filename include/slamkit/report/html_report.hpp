@@ -19,6 +19,9 @@ struct ReportPath {
   std::string name;   // "estimate", "truth", "odometry", ...
   std::string color;  // a CSS colour
   Trajectory poses;
+  // The position covariance at each pose (empty, or one per pose): the 2σ ellipse at the
+  // slider's time.
+  std::vector<Eigen::Matrix2d> covariances;
 };
 
 struct ReportLandmark {
@@ -53,7 +56,8 @@ struct HtmlReportParams {
 
 // One self-contained HTML page (no network: the data and the script inline): the map with the
 // paths growing over time (a slider and a play button; `#t=F` in the address starts at fraction
-// F), the landmarks with their 2σ ellipses, the series over time with a cursor at the slider's
+// F), the first path's pose and its 2σ ellipse at the slider's time (its size in the element
+// `pose-sigma`), the landmarks with their 2σ ellipses, the series over time with a cursor at the slider's
 // time, and the metrics as a table (cell ids `m-KEY`, nested keys joined by dots).
 std::string HtmlReport(const ReportData& data, const HtmlReportParams& params = {});
 

@@ -105,7 +105,9 @@ const std::vector<AssociationDecision>& LandmarkRunRecorder::Step(
   const Pose2 estimate = filter_.PoseEstimate();
   const Eigen::Vector3d e = PoseError(estimate, truth.pose);
   out_.errors.push_back(e);
-  out_.nees.push_back(Nees(e, filter_.PoseCovariance()));
+  const Eigen::Matrix3d covariance = filter_.PoseCovariance();
+  out_.nees.push_back(Nees(e, covariance));
+  out_.pose_covariance.push_back(covariance);
   out_.estimate.push_back({step.t_s, estimate});
   out_.truth.push_back(truth);
   return decisions_.back();

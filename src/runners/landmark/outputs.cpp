@@ -42,6 +42,19 @@ void WriteErrorsCsv(const std::filesystem::path& path, const RunResult& r) {
   });
 }
 
+// Each step's pose covariance (x, y, θ; its upper triangle), for the viewer's pose ellipses.
+void WritePoseCovarianceCsv(const std::filesystem::path& path, const RunResult& r) {
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "t_s,cov_xx,cov_xy,cov_xt,cov_yy,cov_yt,cov_tt\n";
+    for (std::size_t k = 0; k < r.pose_covariance.size(); ++k) {
+      const Eigen::Matrix3d& c = r.pose_covariance[k];
+      out << fmt::format("{:.6f},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+                         r.truth[k + 1].t_s, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2),
+                         c(2, 2));
+    }
+  });
+}
+
 // `json` as dump(2) would print it inside an array inside the top-level object.
 std::string IndentedEntry(const nlohmann::json& json) {
   std::string out = "    ";
@@ -164,6 +177,7 @@ void MonteCarloWriter::Add(int k, const RunResult& run, const RunSummary& summar
   WriteTumTrajectory(run_dir / "truth.tum", run.truth);
   WriteLandmarkMapCsv(run_dir / "map.csv", run.map);
   WriteErrorsCsv(run_dir / "errors.csv", run);
+  WritePoseCovarianceCsv(run_dir / "pose_covariance.csv", run);
   nlohmann::json entry = RunSummaryJson(k, summary);
   entry.update(extra);
   AddEntry(entry);

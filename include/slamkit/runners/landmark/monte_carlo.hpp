@@ -42,6 +42,7 @@ struct RunResult {
   Trajectory estimate;
   std::vector<Eigen::Vector3d> errors;  // estimate ⊖ truth per step
   std::vector<double> nees;             // pose NEES per step (3 DoF)
+  std::vector<Eigen::Matrix3d> pose_covariance;  // the filter's per step (x, y, θ)
   std::vector<double> step_time_s;      // wall time of predict + update per step
   // The filter's map, with each landmark's source_id set by the harness to the true id of the
   // sighting that created it (kNoLandmark if the harness saw no sighting create it).
