@@ -27,9 +27,10 @@ for program in ekf_landmarks grid_laser; do
   printf '%s:\n%s\n' "$program" "$output"
   grep -q "^final pose:" <<<"$output" || { echo "test: $program printed no final pose" >&2; exit 1; }
 done
-# The Python module as installed (lib/python3/dist-packages under the prefix), under Debian's
+# The Python module as installed (lib/python3.X/dist-packages under the prefix), under Debian's
 # python3 with its numpy and pytest: the tests against the program, then the two examples.
-export PYTHONPATH=$prefix/lib/python3/dist-packages SLAMKIT_CLI=$PWD/build/release/bin/slamkit
+site=$(/usr/bin/python3 -c 'import sys; print("python%d.%d" % sys.version_info[:2])')
+export PYTHONPATH=$prefix/lib/$site/dist-packages SLAMKIT_CLI=$PWD/build/release/bin/slamkit
 /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests
 for example in examples/python/*.py; do /usr/bin/python3 "$example"; done
 unset PYTHONPATH SLAMKIT_CLI

@@ -91,6 +91,35 @@ TEST_F(Bag, GivesTheTrajectoryOfTheSameScansAsACarmenLog) {
   EXPECT_LT(metrics("from_bag")["relations_trans_mean_m"].get<double>(), 0.05);
 }
 
+// features, localize and the pose-graph back end take --bag through the same input path: the same output
+// from the bag as from its content as a CARMEN log.
+TEST_F(Bag, FeaturesLocalizeAndThePoseGraphReadItToo) {
+  ASSERT_TRUE(WriteBag(300)) << "scripts/ros/carmen_to_bag.py failed";
+  for (const std::string command : {"features", "grid --backend graph"}) {
+    const fs::path from_bag = dir_ / "from_bag", from_log = dir_ / "from_log";
+    const CliResult bag = RunCli(command + " --bag " + BagPath() + " --out " + from_bag.string());
+    ASSERT_EQ(bag.exit_code, 0) << command << "\n" << bag.output;
+    const CliResult log = RunCli(command + " --log " + (dir_ / "intel_bag.clf").string() +
+                                 " --out " + from_log.string());
+    ASSERT_EQ(log.exit_code, 0) << command << "\n" << log.output;
+    EXPECT_EQ(ReadText(from_bag / "trajectory.tum"), ReadText(from_log / "trajectory.tum"))
+        << command;
+    fs::remove_all(from_bag);
+    fs::remove_all(from_log);
+  }
+  // localize on the map grid made from the bag.
+  ASSERT_EQ(RunCli("grid --bag " + BagPath() + " --out " + (dir_ / "map").string()).exit_code, 0);
+  const std::string localize = "localize --map " + (dir_ / "map" / "map.yaml").string() +
+                               " --initial-pose 0,0,0 ";
+  const CliResult bag = RunCli(localize + "--bag " + BagPath() + " --out " +
+                               (dir_ / "loc_bag").string());
+  ASSERT_EQ(bag.exit_code, 0) << bag.output;
+  ASSERT_EQ(RunCli(localize + "--log " + (dir_ / "intel_bag.clf").string() + " --out " +
+                   (dir_ / "loc_log").string()).exit_code, 0);
+  EXPECT_EQ(ReadText(dir_ / "loc_bag" / "trajectory.tum"),
+            ReadText(dir_ / "loc_log" / "trajectory.tum"));
+}
+
 TEST_F(Bag, TopicsAndFramesAreChecked) {
   ASSERT_TRUE(WriteBag(50)) << "scripts/ros/carmen_to_bag.py failed";
   const std::string out = " --out " + (dir_ / "refused").string();
