@@ -1,6 +1,5 @@
 // `slamkit merge`: the output folders of `slamkit mc --shard K/N` joined into the unsharded run's.
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +14,7 @@
 #include "suite_sheet.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/json_reader.hpp"
 #include "slamkit/io/landmark_csv.hpp"
 #include "slamkit/runners/grid/suite_merge.hpp"
 #include "slamkit/runners/landmark/monte_carlo_merge.hpp"
@@ -30,16 +30,6 @@ struct MergeOptions {
   std::string out;
   bool no_figures = false;
 };
-
-nlohmann::json ReadJson(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string() + ": cannot open file");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: not JSON: {}", path.string(), e.what()));
-  }
-}
 
 // A shard folder: its metrics.json and each run's errors.csv.
 SavedMonteCarloShard ReadShard(const std::string& dir) {

@@ -1,6 +1,5 @@
 // `slamkit report DIR`: the replay viewer of a run folder, one self-contained report.html.
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -13,6 +12,7 @@
 #include "options.hpp"
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/error.hpp"
+#include "slamkit/io/json_reader.hpp"
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/numeric_csv.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
@@ -89,11 +89,7 @@ void AddSeries(ReportData& data, const NumericCsv& csv, const char* column, cons
 
 ReportData Gather(const fs::path& dir) {
   ReportData data;
-  if (const auto metrics = First(dir, {"metrics.json"})) {
-    std::ifstream in(*metrics);
-    data.metrics = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-    if (data.metrics.is_discarded()) throw InputError(metrics->string() + ": not JSON");
-  }
+  if (const auto metrics = First(dir, {"metrics.json"})) data.metrics = ReadJson(*metrics);
   AddPath(data, First(dir, {"trajectory.tum", "estimate.tum", "run_0/estimate.tum"}), "estimate",
           "#0050c8");
   AddPath(data, First(dir, {"truth.tum", "run_0/truth.tum"}), "truth", "#089000");
@@ -107,7 +103,9 @@ ReportData Gather(const fs::path& dir) {
   if (const auto file = First(dir, {"consistency.csv"})) {
     const NumericCsv csv = ReadNumericCsv(*file);
     AddSeries(data, csv, "anees", "ANEES");
-    const nlohmann::json& band = data.metrics.is_object() ? data.metrics["anees_band"] : nullptr;
+    // value(): a missing key must not be added to the metrics the page shows.
+    const nlohmann::json band =
+        data.metrics.is_object() ? data.metrics.value("anees_band", nlohmann::json()) : nullptr;
     if (!data.series.empty() && band.is_array() && band.size() == 2) {
       data.series.back().band = {band[0].get<double>(), band[1].get<double>()};
     }

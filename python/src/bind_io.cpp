@@ -21,14 +21,18 @@ namespace {
 
 using LaserLog = std::shared_ptr<CarmenLog>;
 
+// `view` made read-only: a view of data a reader returned is not for writing.
+py::array ReadOnly(py::array view) {
+  py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return view;
+}
+
 // A read-only view of `count` rows of `columns` doubles `stride` bytes apart at `data`, keeping
 // `owner` alive.
 py::array ReadOnlyView(const double* data, py::ssize_t count, py::ssize_t columns,
                        py::ssize_t stride, py::handle owner) {
-  py::array view(py::dtype::of<double>(), {count, columns},
-                 {stride, static_cast<py::ssize_t>(sizeof(double))}, data, owner);
-  py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return view;
+  return ReadOnly(py::array(py::dtype::of<double>(), {count, columns},
+                            {stride, static_cast<py::ssize_t>(sizeof(double))}, data, owner));
 }
 
 template <class T>
@@ -48,12 +52,9 @@ void BindLaserLog(py::module_& m) {
           "ranges",
           [](py::object self) {
             const LaserScan& s = self.cast<const LaserScan&>();
-            py::array_t<float> view({static_cast<py::ssize_t>(s.ranges_m.size())},
-                                    {static_cast<py::ssize_t>(sizeof(float))},
-                                    s.ranges_m.data(), self);
-            py::detail::array_proxy(view.ptr())->flags &=
-                ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-            return view;
+            return ReadOnly(py::array_t<float>({static_cast<py::ssize_t>(s.ranges_m.size())},
+                                               {static_cast<py::ssize_t>(sizeof(float))},
+                                               s.ranges_m.data(), self));
           },
           "the ranges [m] as float32, a view of the scan (no copy)")
       .def_readonly("angle_min", &LaserScan::angle_min_rad)

@@ -43,19 +43,20 @@ NumericCsv ReadNumericCsv(const std::filesystem::path& path) {
     const std::vector<std::string_view> fields = Split(line);
     const std::string where = fmt::format("{}:{}", path.string(), reader.line_number());
     if (fields.size() != out.columns.size()) {
-      throw InputError(fmt::format("{}: {} fields where the header names {}", where,
-                                   fields.size(), out.columns.size()));
+      throw InputError(fmt::format("{}: expected {} comma-separated fields (the header's), got {}",
+                                   where, out.columns.size(), fields.size()));
     }
     std::vector<double> row(fields.size());
     for (std::size_t i = 0; i < fields.size(); ++i) {
       const std::string_view f = fields[i];
       const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), row[i]);
       if (f.empty() || ec != std::errc() || end != f.data() + f.size()) {
-        throw InputError(fmt::format("{}: column '{}': not a number ('{}')", where,
+        throw InputError(fmt::format("{}: field '{}': not a number ('{}')", where,
                                      out.columns[i], text::Printable(f)));
       }
     }
     out.rows.push_back(std::move(row));
+    out.lines.push_back(reader.line_number());
   }
   return out;
 }

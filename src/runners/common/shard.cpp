@@ -1,7 +1,12 @@
 #include "slamkit/runners/common/shard.hpp"
 
 #include <charconv>
+#include <set>
 #include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "slamkit/io/error.hpp"
 
 namespace slamkit {
 
@@ -16,6 +21,20 @@ ShardRange RangeOfShard(int total, const Shard& shard) {
     return static_cast<int>(static_cast<long long>(total) * i / shard.count);
   };
   return {at(shard.index - 1), at(shard.index)};
+}
+
+void CheckShardIndices(const std::vector<std::pair<int, std::string>>& given, int count) {
+  std::set<int> seen;
+  for (const auto& [index, folder] : given) {
+    if (!seen.insert(index).second) {
+      throw InputError(fmt::format("{}: shard {}/{} given twice", folder, index, count));
+    }
+  }
+  for (int index = 1; index <= count; ++index) {
+    if (!seen.count(index)) {
+      throw InputError(fmt::format("merge: shard {}/{} is missing", index, count));
+    }
+  }
 }
 
 Shard ParseShard(const std::string& text) {

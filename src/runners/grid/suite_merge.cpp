@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "slamkit/io/error.hpp"
+#include "slamkit/runners/common/shard.hpp"
 
 namespace slamkit {
 namespace {
@@ -55,20 +56,13 @@ MergedSuite MergeSuiteShards(const std::vector<SavedSuiteShard>& shards) {
   if (shards.empty()) throw InputError("merge: no shard folders");
   const nlohmann::json& first = shards.front().summary.at("shard");
   std::map<int, const SavedSuiteShard*> by_index;
+  std::vector<std::pair<int, std::string>> indices;
   for (const SavedSuiteShard& shard : shards) {
     CheckShard(shard, first, shards.front().name);
-    const int index = shard.summary.at("shard").at("index").get<int>();
-    if (!by_index.emplace(index, &shard).second) {
-      throw InputError(fmt::format("{}: shard {}/{} given twice", shard.name, index,
-                                   first.at("count").get<int>()));
-    }
+    indices.emplace_back(shard.summary.at("shard").at("index").get<int>(), shard.name);
+    by_index.emplace(indices.back().first, &shard);
   }
-  const int count = first.at("count").get<int>();
-  for (int index = 1; index <= count; ++index) {
-    if (!by_index.count(index)) {
-      throw InputError(fmt::format("merge: shard {}/{} is missing", index, count));
-    }
-  }
+  CheckShardIndices(indices, first.at("count").get<int>());
   MergedSuite out;
   out.study = first.at("study");
   for (const auto& [index, shard] : by_index) {

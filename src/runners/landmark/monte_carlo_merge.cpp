@@ -75,6 +75,7 @@ std::map<int, const SavedMonteCarloShard*> CheckedShards(
   const nlohmann::json study = WithoutAggregates(shards.front().metrics);
   const int count = shards.front().metrics.at("shard").at("count").get<int>();
   std::map<int, const SavedMonteCarloShard*> by_index;
+  std::vector<std::pair<int, std::string>> indices;
   for (const SavedMonteCarloShard& shard : shards) {
     const nlohmann::json& s = shard.metrics.at("shard");
     const std::string differs = FirstDifference(study, WithoutAggregates(shard.metrics));
@@ -83,10 +84,8 @@ std::map<int, const SavedMonteCarloShard*> CheckedShards(
                                    shard.name, shards.front().name,
                                    differs.empty() ? "shard.count" : differs));
     }
-    const int index = s.at("index").get<int>();
-    if (!by_index.emplace(index, &shard).second) {
-      throw InputError(fmt::format("{}: shard {}/{} given twice", shard.name, index, count));
-    }
+    indices.emplace_back(s.at("index").get<int>(), shard.name);
+    by_index.emplace(indices.back().first, &shard);
     const int first = s.at("first_run").get<int>(), end = s.at("end_run").get<int>();
     bool in_order = static_cast<int>(shard.runs.size()) == end - first;
     for (std::size_t i = 0; in_order && i < shard.runs.size(); ++i) {
@@ -96,11 +95,7 @@ std::map<int, const SavedMonteCarloShard*> CheckedShards(
       throw InputError(fmt::format("{}: its runs are not runs {} to {}", shard.name, first, end - 1));
     }
   }
-  for (int index = 1; index <= count; ++index) {
-    if (!by_index.count(index)) {
-      throw InputError(fmt::format("merge: shard {}/{} is missing", index, count));
-    }
-  }
+  CheckShardIndices(indices, count);
   return by_index;
 }
 
@@ -127,7 +122,6 @@ MergedMonteCarlo MergeMonteCarloShards(const std::vector<SavedMonteCarloShard>& 
   out.metrics.erase("shard");
   out.metrics.update(MonteCarloResultJson(out.mc));
   if (has_sections) out.metrics["sections"] = SectionMeansJson(MeanSections(sections));
-  out.first = {1, static_cast<int>(by_index.size())};
   return out;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace slamkit {
 
@@ -23,6 +25,11 @@ struct ShardRange {
 // Shard `shard`'s items of `total`: contiguous, the sizes differing by at most one. Throws
 // std::invalid_argument unless 1 <= index <= count <= total.
 ShardRange RangeOfShard(int total, const Shard& shard);
+
+// That the indices of the shard outputs given (each with its folder, for the message) are 1 ..
+// `count`, each once: InputError naming the folder of an index given twice, or the missing
+// index.
+void CheckShardIndices(const std::vector<std::pair<int, std::string>>& given, int count);
 
 // "3/4" -> {3, 4}; std::invalid_argument with a message naming `text` otherwise.
 Shard ParseShard(const std::string& text);

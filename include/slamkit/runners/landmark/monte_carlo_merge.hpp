@@ -28,7 +28,6 @@ struct MergedMonteCarlo {
   nlohmann::json metrics;               // the unsharded run's metrics.json without per_run
   std::vector<nlohmann::json> per_run;  // in index order
   MonteCarloResult mc;                  // its aggregates and `world` (no runs kept)
-  Shard first;                          // the shard holding run 0
 };
 
 // The unsharded study from its N shards, given in any order: every run replayed through the
