@@ -60,6 +60,25 @@ void AddLandmarks(ReportData& data, const std::optional<fs::path>& file, bool es
   }
 }
 
+// The map history (map_history.csv: t_s,index,source_id,x_m,y_m,cov_xx,cov_xy,cov_yy), one
+// snapshot per run of rows with the same t_s.
+void AddMapHistory(ReportData& data, const fs::path& file) {
+  const NumericCsv csv = ReadNumericCsv(file);
+  const int t = csv.Column("t_s"), x = csv.Column("x_m"), y = csv.Column("y_m"),
+            xx = csv.Column("cov_xx"), xy = csv.Column("cov_xy"), yy = csv.Column("cov_yy");
+  if (t < 0 || x < 0 || y < 0 || xx < 0 || xy < 0 || yy < 0) {
+    throw InputError(file.string() + ": not a map history (t_s,x_m,y_m,cov_xx,cov_xy,cov_yy)");
+  }
+  for (const std::vector<double>& row : csv.rows) {
+    if (data.map_history.empty() || data.map_history.back().t_s != row[t]) {
+      data.map_history.push_back({row[t], {}});
+    }
+    Eigen::Matrix2d c;
+    c << row[xx], row[xy], row[xy], row[yy];
+    data.map_history.back().landmarks.push_back({{row[x], row[y]}, c, true});
+  }
+}
+
 // Each estimated pose's position covariance from pose_covariance.csv (one row per step after the
 // start pose, which gets the first row's): used only when the rows pair with the poses.
 void AddPoseCovariances(ReportData& data, const NumericCsv& csv) {
@@ -100,6 +119,9 @@ ReportData Gather(const fs::path& dir) {
   if (const auto map = First(dir, {"map.yaml"})) data.map = ReadOccupancyImage(*map);
   AddLandmarks(data, First(dir, {"world.csv"}), false);
   AddLandmarks(data, First(dir, {"map.csv", "run_0/map.csv"}), true);
+  if (const auto file = First(dir, {"map_history.csv", "run_0/map_history.csv"})) {
+    AddMapHistory(data, *file);
+  }
   if (const auto file = First(dir, {"consistency.csv"})) {
     const NumericCsv csv = ReadNumericCsv(*file);
     AddSeries(data, csv, "anees", "ANEES");
@@ -138,8 +160,9 @@ int RunReportCommand(const ReportOptions& o) {
   const std::string page = HtmlReport(data, params);
   const fs::path out = o.out.empty() ? dir / "report.html" : fs::path(o.out);
   WriteFileAtomically(out, [&](std::ostream& file) { file << page; });
-  fmt::print("{}: {} paths, {} landmarks, {} series{}; {:.1f} MB\nwrote {}\n", o.dir,
-             data.paths.size(), data.landmarks.size(), data.series.size(),
+  fmt::print("{}: {} paths, {} landmarks ({} map snapshots), {} series{}; {:.1f} MB\nwrote {}\n",
+             o.dir, data.paths.size(), data.landmarks.size(), data.map_history.size(),
+             data.series.size(),
              data.map ? ", the map" : "", page.size() / 1e6, out.string());
   return 0;
 }

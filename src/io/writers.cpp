@@ -42,6 +42,20 @@ void WriteLandmarkMapCsv(const std::filesystem::path& path, const LandmarkMap& m
   WriteFileAtomically(path, text);
 }
 
+void WriteLandmarkMapHistoryCsv(const std::filesystem::path& path,
+                                const std::vector<LandmarkMapSnapshot>& history) {
+  std::string text = "t_s,index,source_id,x_m,y_m,cov_xx,cov_xy,cov_yy\n";
+  for (const LandmarkMapSnapshot& snapshot : history) {
+    for (std::size_t i = 0; i < snapshot.map.landmarks.size(); ++i) {
+      const MappedLandmark& l = snapshot.map.landmarks[i];
+      fmt::format_to(std::back_inserter(text), "{:.6f},{},{},{},{},{},{},{}\n", snapshot.t_s, i,
+                     l.source_id, l.position_m.x(), l.position_m.y(), l.covariance(0, 0),
+                     l.covariance(0, 1), l.covariance(1, 1));
+    }
+  }
+  WriteFileAtomically(path, text);
+}
+
 void WriteLandmarkWorldCsv(const std::filesystem::path& path, const LandmarkWorld& world) {
   std::string text = "id,x_m,y_m\n";
   for (const Landmark& l : world.landmarks) {

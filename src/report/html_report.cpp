@@ -113,6 +113,26 @@ nlohmann::json LandmarksJson(const std::vector<ReportLandmark>& landmarks) {
   return out;
 }
 
+// Each snapshot as {t, l: [[x, y, cxx, cxy, cyy], ...]}, thinned to about `limit` landmarks.
+nlohmann::json HistoryJson(const std::vector<ReportMapSnapshot>& history, std::size_t limit) {
+  std::size_t total = 0;
+  for (const ReportMapSnapshot& s : history) total += s.landmarks.size();
+  const std::size_t keep =
+      total > limit && total > 0 ? std::max<std::size_t>(1, history.size() * limit / total)
+                                 : history.size();
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t i : Decimated(history.size(), keep)) {
+    nlohmann::json l = nlohmann::json::array();
+    for (const ReportLandmark& m : history[i].landmarks) {
+      const Eigen::Matrix2d c = m.covariance.value_or(Eigen::Matrix2d::Zero());
+      l.push_back({m.position_m.x(), m.position_m.y(), Number(c(0, 0)), Number(c(0, 1)),
+                   Number(c(1, 1))});
+    }
+    out.push_back({{"t", history[i].t_s}, {"l", l}});
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string HtmlReport(const ReportData& data, const HtmlReportParams& params) {
@@ -120,7 +140,9 @@ std::string HtmlReport(const ReportData& data, const HtmlReportParams& params) {
                             {"metrics", data.metrics},
                             {"paths", nlohmann::json::array()},
                             {"series", nlohmann::json::array()},
-                            {"landmarks", LandmarksJson(data.landmarks)}};
+                            {"landmarks", LandmarksJson(data.landmarks)},
+                            {"history", HistoryJson(data.map_history,
+                                                    params.max_history_landmarks)}};
   for (const ReportPath& p : data.paths) {
     payload["paths"].push_back(PathJson(p, params.max_path_points));
   }

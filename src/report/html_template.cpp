@@ -25,7 +25,8 @@ td.key { color: #555; }
     <canvas id="view" width="720" height="720"></canvas>
     <div id="controls"><button id="play">play</button>
       <input id="slider" type="range" min="0" max="1000" value="1000">
-      <span id="time"></span> <span id="pose-sigma"></span></div>
+      <span id="time"></span> <span id="pose-sigma"></span>
+      <span id="landmarks-shown"></span></div>
     <div class="legend" id="legend"></div>
   </div>
   <div>
@@ -96,12 +97,19 @@ function drawView(t) {
     ctx.imageSmoothingEnabled = false;
     ctx.drawImage(mapCanvas, x0, y1, D.map.w * D.map.resolution * scale, D.map.h * D.map.resolution * scale);
   }
-  for (const l of D.landmarks) {
+  // With a map history, the estimated landmarks of its last snapshot at or before t.
+  const snapshot = D.history.length ? D.history[lastAt(D.history.map((s) => s.t), t)] : null;
+  const shown = D.history.length
+      ? (snapshot ? snapshot.l.map(([x, y, a, b, c]) => ({x, y, est: true, c: [a, b, c]})) : [])
+      : D.landmarks.filter((l) => l.est);
+  for (const l of D.landmarks.filter((l) => !l.est).concat(shown)) {
     ctx.strokeStyle = ctx.fillStyle = l.est ? "#d00" : "#555";
-    if (l.est && l.c) ellipse(ctx, l.x, l.y, l.c);
+    if (l.est && l.c && l.c.every((v) => v !== null)) ellipse(ctx, l.x, l.y, l.c);
     if (!l.est) ctx.fillRect(px(l.x) - 2, py(l.y) - 2, 4, 4);
     else { ctx.beginPath(); ctx.arc(px(l.x), py(l.y), 1.5, 0, 2 * Math.PI); ctx.fill(); }
   }
+  document.getElementById("landmarks-shown").textContent =
+      shown.length || D.landmarks.length ? `${shown.length} estimated landmarks` : "";
   for (const p of D.paths) {
     const k = lastAt(p.t, t);
     ctx.strokeStyle = p.color; ctx.lineWidth = 1.5; ctx.beginPath();

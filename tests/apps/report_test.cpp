@@ -103,6 +103,28 @@ TEST_F(Report, TheMonteCarloPageShowsTheMetricsAndMovesWithTheSlider) {
   const std::string sigma = ElementText(dom, "pose-sigma");
   ASSERT_NE(sigma.find("pose 2σ ellipse "), std::string::npos) << sigma;
   EXPECT_NEAR(std::stod(sigma.substr(sigma.find("ellipse ") + 8)), major, 0.005 * major) << sigma;
+  // The landmarks drawn at that time are the map history's last snapshot at or before it
+  // (run_0/map_history.csv, t_s first), fewer than the final map's.
+  std::istringstream poses(ReadText(run / "run_0" / "estimate.tum"));
+  for (int i = 0; i <= pose && std::getline(poses, row);) {
+    if (!row.empty() && row[0] != '#') ++i;
+  }
+  const double pose_t = std::stod(row);
+  std::istringstream history(ReadText(run / "run_0" / "map_history.csv"));
+  std::getline(history, row);  // header
+  double snapshot_t = -1;
+  int in_snapshot = 0;
+  while (std::getline(history, row)) {
+    const double row_t = std::stod(row);
+    if (row_t > pose_t) break;
+    in_snapshot = row_t == snapshot_t ? in_snapshot + 1 : 1;
+    snapshot_t = row_t;
+  }
+  ASSERT_GT(in_snapshot, 0);
+  EXPECT_EQ(ElementText(dom, "landmarks-shown"),
+            std::to_string(in_snapshot) + " estimated landmarks");
+  const std::string final_count = ElementText(Chromium(page, 1.0), "landmarks-shown");
+  EXPECT_LT(in_snapshot, std::stoi(final_count)) << final_count;
   // Drawn: a screenshot at a quarter and one at the end differ, and neither is blank (a blank
   // 1400 x 1000 page compresses to a few kB).
   const fs::path early = dir_ / "early.png", late = dir_ / "late.png";

@@ -24,4 +24,10 @@ struct LandmarkMap {
   std::optional<int> FindBySource(LandmarkId id) const;
 };
 
+// The map as a filter held it at time t_s (a run's map history, for replay).
+struct LandmarkMapSnapshot {
+  double t_s = 0.0;
+  LandmarkMap map;
+};
+
 }  // namespace slamkit

@@ -30,6 +30,12 @@ struct ReportLandmark {
   bool estimated = true;                      // else a true landmark
 };
 
+// The estimated landmarks as the filter held them at time t_s (a run's map history).
+struct ReportMapSnapshot {
+  double t_s = 0.0;
+  std::vector<ReportLandmark> landmarks;
+};
+
 struct ReportSeries {
   std::string name;  // "ANEES", "position RMSE [m]", ...
   std::vector<double> t_s;
@@ -43,6 +49,9 @@ struct ReportData {
   std::vector<ReportPath> paths;    // the first is the one the time slider follows
   std::optional<OccupancyImage> map;
   std::vector<ReportLandmark> landmarks;
+  // When given, the estimated landmarks drawn at the slider's time are the last snapshot's at or
+  // before it (the final map's are drawn with no history).
+  std::vector<ReportMapSnapshot> map_history;
   std::vector<ReportSeries> series;
 };
 
@@ -52,12 +61,16 @@ struct HtmlReportParams {
   std::size_t max_path_points = 4000;
   std::size_t max_series_points = 4000;
   std::size_t max_map_pixels = 1'500'000;
+  // Snapshots of the map history are dropped evenly (the last kept) beyond this many landmarks
+  // in all.
+  std::size_t max_history_landmarks = 200'000;
 };
 
 // One self-contained HTML page (no network: the data and the script inline): the map with the
 // paths growing over time (a slider and a play button; `#t=F` in the address starts at fraction
 // F), the first path's pose and its 2σ ellipse at the slider's time (its size in the element
-// `pose-sigma`), the landmarks with their 2σ ellipses, the series over time with a cursor at the slider's
+// `pose-sigma`), the landmarks with their 2σ ellipses (from the map history at the slider's time
+// when there is one; their count in `landmarks-shown`), the series over time with a cursor at the slider's
 // time, and the metrics as a table (cell ids `m-KEY`, nested keys joined by dots).
 std::string HtmlReport(const ReportData& data, const HtmlReportParams& params = {});
 

@@ -60,7 +60,8 @@ ActiveRunResult RunOneActive(const ScenarioParams& scenario, const PlannerConfig
   const std::unique_ptr<LandmarkSlamFilter> filter = make_filter();
   try {
     return RunActive(scenario, planner, world, *filter, params.known_association, noise_rng,
-                     order_rng, planner_rng);
+                     order_rng, planner_rng,
+                     k < params.map_history_runs ? params.map_snapshots : 0);
   } catch (const NumericalError& e) {
     throw NumericalError("run " + std::to_string(k) + " of seed " + std::to_string(params.seed) +
                          ": " + e.what());

@@ -57,12 +57,13 @@ class RouteLegCounter {
 ActiveRunResult RunActive(const ScenarioParams& scenario, const PlannerConfig& planner,
                           const LandmarkWorld& world, LandmarkSlamFilter& filter,
                           bool known_association, Rng& noise_rng, Rng& order_rng,
-                          Rng& planner_rng) {
+                          Rng& planner_rng, int map_snapshots) {
   SwslamPlannerParams planner_params = planner.swslam;
   planner_params.detour = planner.kind == PlannerKind::kSwslam;
   SwslamPlanner swslam(planner_params, planner_rng);
   Simulator sim(scenario, world, noise_rng, order_rng);
   LandmarkRunRecorder recorder(filter, known_association);
+  recorder.KeepMapSnapshots(map_snapshots);
   recorder.Start(scenario.initial_pose, {0.0, scenario.initial_pose}, sim.InitialObservations(),
                  sim.InitialIds());
   ActiveRunResult out;  // its period_ids are the truth, kept from the planner

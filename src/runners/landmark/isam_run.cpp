@@ -30,10 +30,16 @@ std::optional<HeadingDriftFit> FitFileOdometry(const IsamLog& log, const Traject
   return FitHeadingDrift(odometry, estimate, params);
 }
 
+// Snapshots of the map a run keeps for the replay viewer (`slamkit report`), evenly over its
+// steps: enough to watch the map grow, a few MB on Victoria Park.
+constexpr std::size_t kMapSnapshots = 50;
+
 // One filter run over the log, with each decision paired with the file's id of its sighting.
 struct Pass {
   std::vector<std::pair<int, LandmarkId>> assigned;
   Trajectory estimate;
+  std::vector<Eigen::Matrix3d> pose_covariance;  // after each step
+  std::vector<LandmarkMapSnapshot> map_history;
   int sightings = 0;
   int outside_gate = 0;  // new landmarks and dropped sightings
   int dropped = 0;
@@ -59,11 +65,17 @@ Pass RunPass(LandmarkSlamFilter& slam, const IsamLog& log, const IsamRunParams& 
   };
   update(log.initial_sightings);
   pass.estimate.push_back({double(log.initial_pose_index), slam.PoseEstimate()});
+  pass.map_history.push_back({pass.estimate.back().t_s, slam.Map()});
+  const std::size_t every = (log.steps.size() + kMapSnapshots - 1) / kMapSnapshots;
   for (const IsamStep& step : log.steps) {
     const ControlCovariance q = isam_detail::StepCovariance(step, params);
     slam.Predict(isam_detail::StepControl(step, params), 0.0, &q);
     update(step.sightings);
     pass.estimate.push_back({double(step.pose_index), slam.PoseEstimate()});
+    pass.pose_covariance.push_back(slam.PoseCovariance());
+    if ((pass.estimate.size() - 1) % every == 0) {
+      pass.map_history.push_back({pass.estimate.back().t_s, slam.Map()});
+    }
   }
   // Before anything is taken from the state: a run gone numerically bad gives no map of NaN.
   slam.Flush();
@@ -216,7 +228,12 @@ IsamRunResult RunFilterOnIsam(LandmarkSlamFilter& filter, const IsamLog& log,
   Pass pass = RunPass(filter, log, params, known_association);
   IsamRunResult out;
   out.estimate = std::move(pass.estimate);
+  out.pose_covariance = std::move(pass.pose_covariance);
   out.map = filter.Map();
+  out.map_history = std::move(pass.map_history);
+  if (out.map_history.back().t_s != out.estimate.back().t_s) {
+    out.map_history.push_back({out.estimate.back().t_s, out.map});
+  }
   out.counters = filter.Counters();
   out.sightings = pass.sightings;
   out.dropped = pass.dropped;

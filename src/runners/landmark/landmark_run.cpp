@@ -90,6 +90,7 @@ const std::vector<AssociationDecision>& LandmarkRunRecorder::Start(
   Record(CheckedUpdate(filter_, Given(observations, true_ids)), true_ids);
   out_.truth.push_back(truth);
   out_.estimate.push_back({0.0, filter_.PoseEstimate()});
+  if (snapshots_ > 0) Snapshot(0.0);
   return decisions_.back();
 }
 
@@ -110,7 +111,19 @@ const std::vector<AssociationDecision>& LandmarkRunRecorder::Step(
   out_.pose_covariance.push_back(covariance);
   out_.estimate.push_back({step.t_s, estimate});
   out_.truth.push_back(truth);
+  if (snapshots_ > 0 && ++steps_ % snapshot_every_ == 0) Snapshot(step.t_s);
   return decisions_.back();
+}
+
+// Snapshots are taken every snapshot_every_ steps; at 2 × snapshots_ of them every other one is
+// dropped and the spacing doubled, so a run of unknown length keeps an even history.
+void LandmarkRunRecorder::Snapshot(double t_s) {
+  std::vector<LandmarkMapSnapshot>& history = out_.map_history;
+  history.push_back({t_s, filter_.Map()});
+  if (history.size() < 2 * static_cast<std::size_t>(snapshots_)) return;
+  for (std::size_t i = 0; 2 * i < history.size(); ++i) history[i] = std::move(history[2 * i]);
+  history.resize((history.size() + 1) / 2);
+  snapshot_every_ *= 2;
 }
 
 // The only place a true id can reach the filter, and only with known association.
@@ -142,6 +155,17 @@ RunResult LandmarkRunRecorder::Finish(const LandmarkWorld& world) {
       decisions_, true_ids_, static_cast<int>(out.map.landmarks.size()), scorer);
   for (std::size_t i = 0; i < out.map.landmarks.size(); ++i) {
     out.map.landmarks[i].source_id = landmark_truth[i];
+  }
+  if (snapshots_ > 0 && (out.map_history.empty() ||
+                              out.map_history.back().t_s != out.estimate.back().t_s)) {
+    out.map_history.push_back({out.estimate.back().t_s, out.map});
+  }
+  // A landmark keeps its index for the filter's life, so the final join names it in every
+  // snapshot.
+  for (LandmarkMapSnapshot& snapshot : out.map_history) {
+    for (std::size_t i = 0; i < snapshot.map.landmarks.size(); ++i) {
+      snapshot.map.landmarks[i].source_id = landmark_truth[i];
+    }
   }
   out.rmse = ComputePoseRmse(out.errors);
   out.map_rmse_m = AlignedMapRmse(out.map, world);

@@ -32,13 +32,15 @@ LandmarkFilterFactory FastSlamFactory(const FastSlamParams& fastslam, const Vehi
 }
 
 RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
-                            const LandmarkWorld& world, double dt_s, bool known_association) {
+                            const LandmarkWorld& world, double dt_s, bool known_association,
+                            int map_snapshots) {
   const SimInputs& inputs = sim.inputs;
   const Trajectory& truth = sim.truth.poses;
   if (truth.size() != inputs.steps.size() + 1 || sim.truth.ids.size() != inputs.steps.size()) {
     throw std::invalid_argument("RunLandmarkFilter: truth and inputs differ in length");
   }
   LandmarkRunRecorder recorder(filter, known_association);
+  recorder.KeepMapSnapshots(map_snapshots);
   recorder.Start(inputs.initial_pose, truth[0], inputs.initial_observations,
                  sim.truth.initial_ids);
   for (std::size_t k = 0; k < inputs.steps.size(); ++k) {
@@ -59,7 +61,8 @@ RunResult RunOne(const ScenarioParams& scenario, const LandmarkWorld& world,
   const SimRun sim = Simulate(scenario, world, noise_rng, order_rng);
   const std::unique_ptr<LandmarkSlamFilter> filter = make_filter();
   try {
-    return RunLandmarkFilter(*filter, sim, world, scenario.dt_s, params.known_association);
+    return RunLandmarkFilter(*filter, sim, world, scenario.dt_s, params.known_association,
+                             k < params.map_history_runs ? params.map_snapshots : 0);
   } catch (const NumericalError& e) {
     throw NumericalError("run " + std::to_string(k) + " of seed " + std::to_string(params.seed) +
                          ": " + e.what());

@@ -42,15 +42,16 @@ void WriteErrorsCsv(const std::filesystem::path& path, const RunResult& r) {
   });
 }
 
-// Each step's pose covariance (x, y, θ; its upper triangle), for the viewer's pose ellipses.
-void WritePoseCovarianceCsv(const std::filesystem::path& path, const RunResult& r) {
+// Each step's pose covariance (x, y, θ; its upper triangle), for the viewer's pose ellipses:
+// covariance k belongs to poses[k + 1] (the pose after step k).
+void WritePoseCovarianceCsv(const std::filesystem::path& path, const Trajectory& poses,
+                            const std::vector<Eigen::Matrix3d>& covariances) {
   WriteFileAtomically(path, [&](std::ostream& out) {
     out << "t_s,cov_xx,cov_xy,cov_xt,cov_yy,cov_yt,cov_tt\n";
-    for (std::size_t k = 0; k < r.pose_covariance.size(); ++k) {
-      const Eigen::Matrix3d& c = r.pose_covariance[k];
+    for (std::size_t k = 0; k < covariances.size(); ++k) {
+      const Eigen::Matrix3d& c = covariances[k];
       out << fmt::format("{:.6f},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
-                         r.truth[k + 1].t_s, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2),
-                         c(2, 2));
+                         poses[k + 1].t_s, c(0, 0), c(0, 1), c(0, 2), c(1, 1), c(1, 2), c(2, 2));
     }
   });
 }
@@ -177,7 +178,10 @@ void MonteCarloWriter::Add(int k, const RunResult& run, const RunSummary& summar
   WriteTumTrajectory(run_dir / "truth.tum", run.truth);
   WriteLandmarkMapCsv(run_dir / "map.csv", run.map);
   WriteErrorsCsv(run_dir / "errors.csv", run);
-  WritePoseCovarianceCsv(run_dir / "pose_covariance.csv", run);
+  WritePoseCovarianceCsv(run_dir / "pose_covariance.csv", run.truth, run.pose_covariance);
+  if (!run.map_history.empty()) {
+    WriteLandmarkMapHistoryCsv(run_dir / "map_history.csv", run.map_history);
+  }
   nlohmann::json entry = RunSummaryJson(k, summary);
   entry.update(extra);
   AddEntry(entry);
@@ -261,6 +265,8 @@ void WriteIsamOutputs(const std::filesystem::path& dir, const nlohmann::json& me
   std::filesystem::create_directories(dir);
   WriteTumTrajectory(dir / "estimate.tum", result.estimate);
   WriteLandmarkMapCsv(dir / "map.csv", result.map);
+  WritePoseCovarianceCsv(dir / "pose_covariance.csv", result.estimate, result.pose_covariance);
+  WriteLandmarkMapHistoryCsv(dir / "map_history.csv", result.map_history);
   WriteJson(dir / "metrics.json", metrics);
 }
 

@@ -16,6 +16,7 @@
 #include "slamkit/models/range_bearing.hpp"
 #include "slamkit/runners/landmark/monte_carlo.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"
+#include "slamkit/sim/world.hpp"
 
 namespace slamkit {
 namespace {
@@ -186,6 +187,46 @@ TEST(LandmarkHarness, FilterBreakingTheInterfaceIsReported) {
   EXPECT_THROW(RunMonteCarlo(config.scenario,
                              [] { return std::make_unique<ForgetfulFilter>(); }, params),
                std::logic_error);
+}
+
+// The map history the viewer draws: between N and 2N snapshots spaced evenly over the run
+// (thinned as the run grows), the final map last, each landmark named as in the final map; and
+// taking it leaves the run as it was, bit for bit.
+TEST(MonteCarlo, AMapHistoryIsEvenAndLeavesTheRunAsItWas) {
+  ScenarioConfig c = ShortScenario();
+  c.ekf.association_method = AssociationMethod::kNearestNeighbour;
+  const LandmarkWorld world = MakeWorld(c.scenario.world);
+  const auto run = [&](int snapshots) {
+    Rng noise(3), order(1003);
+    const SimRun sim = Simulate(c.scenario, world, noise, order);
+    const auto filter = EkfSlamFactory(c)();
+    return RunLandmarkFilter(*filter, sim, world, c.scenario.dt_s, false, snapshots);
+  };
+  const RunResult plain = run(0), kept = run(6);
+  EXPECT_TRUE(plain.map_history.empty());
+  ASSERT_EQ(kept.estimate.size(), plain.estimate.size());
+  for (std::size_t k = 0; k < kept.estimate.size(); ++k) {
+    ASSERT_EQ(kept.estimate[k].pose.vector(), plain.estimate[k].pose.vector()) << k;
+  }
+  const std::vector<LandmarkMapSnapshot>& h = kept.map_history;
+  ASSERT_GE(h.size(), 6u + 1);
+  ASSERT_LE(h.size(), 12u + 1);
+  EXPECT_EQ(h.front().t_s, 0.0);
+  EXPECT_EQ(h.back().t_s, kept.estimate.back().t_s);
+  const double spacing = h[1].t_s - h[0].t_s;
+  for (std::size_t i = 1; i + 1 < h.size(); ++i) {
+    EXPECT_NEAR(h[i].t_s - h[i - 1].t_s, spacing, 1e-9) << i;
+    EXPECT_LE(h[i - 1].map.landmarks.size(), h[i].map.landmarks.size());
+  }
+  ASSERT_EQ(h.back().map.landmarks.size(), kept.map.landmarks.size());
+  for (std::size_t i = 0; i < kept.map.landmarks.size(); ++i) {
+    EXPECT_EQ(h.back().map.landmarks[i].position_m, kept.map.landmarks[i].position_m);
+    EXPECT_EQ(h.back().map.landmarks[i].source_id, kept.map.landmarks[i].source_id);
+  }
+  const std::size_t middle = h.size() / 2;
+  for (std::size_t i = 0; i < h[middle].map.landmarks.size(); ++i) {
+    EXPECT_EQ(h[middle].map.landmarks[i].source_id, kept.map.landmarks[i].source_id);
+  }
 }
 
 }  // namespace

@@ -52,11 +52,11 @@ struct ActiveRunResult {
 // Noise and observation order come from `noise_rng` and `order_rng` exactly as in Simulate, so
 // with PlannerKind::kRoute the result is that of RunLandmarkFilter on Simulate's run for the same
 // generators; `planner_rng` seeds K-means. True ids reach the filter only with
-// `known_association`.
+// `known_association`. `map_snapshots` > 0 keeps a map history (RunLandmarkFilter's).
 ActiveRunResult RunActive(const ScenarioParams& scenario, const PlannerConfig& planner,
                           const LandmarkWorld& world, LandmarkSlamFilter& filter,
                           bool known_association, Rng& noise_rng, Rng& order_rng,
-                          Rng& planner_rng);
+                          Rng& planner_rng, int map_snapshots = 0);
 
 // Seed 001's per-section figures from the true ids of each observation period's scan
 // (period_ids[p] for period p).

@@ -83,7 +83,10 @@ struct IsamReferenceErrors {
 // EKF-SLAM over an iSAM-format log (relative-point sightings, odometry with its own covariance).
 struct IsamRunResult {
   Trajectory estimate;  // one pose per log pose, t = the pose's index in the file
+  std::vector<Eigen::Matrix3d> pose_covariance;  // the filter's after each step (x, y, θ)
   LandmarkMap map;
+  // About 50 snapshots of the map, evenly over the run, the final map last (for the viewer).
+  std::vector<LandmarkMapSnapshot> map_history;
   int sightings = 0;
   int dropped = 0;
   int sightings_outside_gate = 0;  // matched no landmark: started one or dropped

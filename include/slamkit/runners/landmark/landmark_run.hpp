@@ -33,6 +33,10 @@ class LandmarkRunRecorder {
   // Checks the filter's health and joins its map and decisions with the truth. Throws
   // std::logic_error if the filter broke the interface.
   RunResult Finish(const LandmarkWorld& world);
+  // Keeps between `count` and 2 × `count` snapshots of the filter's map (RunResult::map_history),
+  // evenly over a run of any length, and the final map; 0 (the default): none. Reading the map
+  // leaves the filter as it was.
+  void KeepMapSnapshots(int count) { snapshots_ = count; }
 
  private:
   std::span<const PointObservation> Given(const std::vector<PointObservation>& observations,
@@ -41,6 +45,11 @@ class LandmarkRunRecorder {
 
   LandmarkSlamFilter& filter_;
   bool known_association_;
+  void Snapshot(double t_s);
+
+  int snapshots_ = 0;
+  int snapshot_every_ = 1;  // steps between snapshots, doubled whenever 2 × snapshots_ are held
+  int steps_ = 0;
   RunResult out_;
   // Every scan's decisions beside its true ids, joined at the end (the map's indices are stable).
   std::vector<std::vector<AssociationDecision>> decisions_;

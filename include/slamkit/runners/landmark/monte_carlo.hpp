@@ -44,6 +44,8 @@ struct RunResult {
   std::vector<double> nees;             // pose NEES per step (3 DoF)
   std::vector<Eigen::Matrix3d> pose_covariance;  // the filter's per step (x, y, θ)
   std::vector<double> step_time_s;      // wall time of predict + update per step
+  // The filter's map over the run, when asked for (RunLandmarkFilter's map_snapshots).
+  std::vector<LandmarkMapSnapshot> map_history;
   // The filter's map, with each landmark's source_id set by the harness to the true id of the
   // sighting that created it (kNoLandmark if the harness saw no sighting create it).
   LandmarkMap map;
@@ -57,8 +59,11 @@ struct RunResult {
 // `known_association`), steps of `dt_s`, then scores it against `sim`'s truth and `world`.
 // Throws std::logic_error if the filter breaks the interface (a decision count that differs from
 // the observation count, a created landmark outside its map).
+// With `map_snapshots` > 0 the run also keeps that many to twice as many snapshots of the
+// filter's map, evenly over its steps, and the final one (RunResult::map_history).
 RunResult RunLandmarkFilter(LandmarkSlamFilter& filter, const SimRun& sim,
-                            const LandmarkWorld& world, double dt_s, bool known_association);
+                            const LandmarkWorld& world, double dt_s, bool known_association,
+                            int map_snapshots = 0);
 
 // What the outputs keep of one run (metrics.json's per_run).
 struct RunSummary {
@@ -109,6 +114,10 @@ struct MonteCarloParams {
   std::function<void(int, const RunResult&, const RunSummary&)> on_run;
   // Runs simulated in parallel before they are aggregated and dropped (memory holds one batch).
   int batch_runs = 64;
+  // Runs 0 .. map_history_runs - 1 keep map_snapshots to 2 × map_snapshots snapshots of their
+  // map for the replay viewer (RunResult::map_history); the others keep none, so the outputs stay small.
+  int map_history_runs = 1;
+  int map_snapshots = 40;
 };
 
 // Aggregates over runs. Per-step series are over the runs still running at that step: in the
