@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
+#include <tuple>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -68,8 +71,8 @@ class BagConverter {
   LaserScan ScanOf(const io_detail::BagScan& msg) {
     LaserScan scan;
     scan.t_s = msg.t_s;
-    scan.angle_min_rad = msg.angle_min;
-    scan.angle_increment_rad = msg.angle_increment;
+    std::tie(scan.angle_min_rad, scan.angle_increment_rad) =
+        LaserScanAngles(msg.angle_min, msg.angle_increment);
     scan.max_range_m = options_.max_range_m.value_or(msg.range_max);
     if (msg.ranges.empty() || !std::isfinite(scan.angle_min_rad) ||
         !(std::isfinite(scan.angle_increment_rad) && scan.angle_increment_rad > 0.0) ||
@@ -130,7 +133,24 @@ class BagConverter {
   long long invalid_readings_ = 0;
 };
 
+// The multiple of π/denominator that rounds to `value` as float32 (the fraction reduced, so that
+// −π/2 is π·(−1)/2 exactly), or `value` itself when none does.
+double PiMultipleOrAsRead(float value, long denominator) {
+  const long k = std::lround(static_cast<double>(value) * static_cast<double>(denominator) / M_PI);
+  const long g = std::gcd(k, denominator);
+  const double candidate = M_PI * static_cast<double>(k / g) / static_cast<double>(denominator / g);
+  return static_cast<float>(candidate) == value ? candidate : static_cast<double>(value);
+}
+
 }  // namespace
+
+std::pair<double, double> LaserScanAngles(float angle_min, float angle_increment) {
+  const long n = angle_increment > 0.0f ? std::lround(M_PI / angle_increment) : 0;
+  if (n < 1 || n > 100'000) return {angle_min, angle_increment};
+  const double step = PiMultipleOrAsRead(angle_increment, n);
+  if (step == static_cast<double>(angle_increment)) return {angle_min, angle_increment};
+  return {PiMultipleOrAsRead(angle_min, 2 * n), step};
+}
 
 CarmenLog ReadRosBag(const std::filesystem::path& path, const RosBagReadOptions& options) {
   io_detail::BagContents bag;
