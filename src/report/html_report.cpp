@@ -117,9 +117,9 @@ nlohmann::json LandmarksJson(const std::vector<ReportLandmark>& landmarks) {
 nlohmann::json HistoryJson(const std::vector<ReportMapSnapshot>& history, std::size_t limit) {
   std::size_t total = 0;
   for (const ReportMapSnapshot& s : history) total += s.landmarks.size();
-  const std::size_t keep =
-      total > limit && total > 0 ? std::max<std::size_t>(1, history.size() * limit / total)
-                                 : history.size();
+  const std::size_t keep = total > limit
+                               ? std::max<std::size_t>(1, history.size() * limit / total)
+                               : history.size();
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t i : Decimated(history.size(), keep)) {
     nlohmann::json l = nlohmann::json::array();

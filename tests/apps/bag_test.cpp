@@ -131,8 +131,9 @@ TEST_F(Bag, FeaturesLocalizeAndThePoseGraphReadItToo) {
                                (dir_ / "loc_bag").string());
   ASSERT_EQ(bag.exit_code, 0) << bag.output;
   ASSERT_EQ(RunCli(localize + LogInput() + " --out " + (dir_ / "loc_log").string()).exit_code, 0);
-  EXPECT_LE(PathDifference(dir_ / "loc_bag" / "trajectory.tum", dir_ / "loc_log" / "trajectory.tum"),
-            1e-9);
+  EXPECT_LE(
+      PathDifference(dir_ / "loc_bag" / "trajectory.tum", dir_ / "loc_log" / "trajectory.tum"),
+      1e-9);
 }
 
 TEST_F(Bag, TopicsAndFramesAreChecked) {

@@ -28,10 +28,11 @@ struct RosBagReadOptions {
 // sample at exactly the stamp is taken as it is, the last of several); the odometry samples by
 // stamp; the laser's offset from /tf_static (or /tf) base_frame -> the scan's
 // frame_id, else none (a note says so). Beam i points at angle_min + i · angle_increment, the
-// messages' float32 values as LaserScanAngles takes them back. max_range_m is options.max_range_m, else the message's range_max: a
-// reading at or above it is a no-return (counted in no_return_beams), and so is +inf, stored as
-// max_range_m (REP 117); NaN, -inf and readings below range_min are no measurement, stored as
-// NaN (a note counts them). Headings come from the quaternions' yaw.
+// messages' float32 values as LaserScanAngles takes them back. max_range_m is
+// options.max_range_m, else the message's range_max: a reading at or above it is a no-return
+// (counted in no_return_beams), and so is +inf, stored as max_range_m (REP 117); NaN, -inf and
+// readings below range_min are no measurement, stored as NaN (a note counts them). Headings
+// come from the quaternions' yaw.
 //
 // Throws InputError naming the file for a bag that cannot be opened or read (not a bag,
 // truncated, unindexed), a topic that is missing or holds another message type (the topics the

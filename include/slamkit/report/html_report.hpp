@@ -70,8 +70,8 @@ struct HtmlReportParams {
 // paths growing over time (a slider and a play button; `#t=F` in the address starts at fraction
 // F), the first path's pose and its 2σ ellipse at the slider's time (its size in the element
 // `pose-sigma`), the landmarks with their 2σ ellipses (from the map history at the slider's time
-// when there is one; their count in `landmarks-shown`), the series over time with a cursor at the slider's
-// time, and the metrics as a table (cell ids `m-KEY`, nested keys joined by dots).
+// when there is one; their count in `landmarks-shown`), the series over time with a cursor at
+// the slider's time, and the metrics as a table (cell ids `m-KEY`, nested keys joined by dots).
 std::string HtmlReport(const ReportData& data, const HtmlReportParams& params = {});
 
 }  // namespace slamkit

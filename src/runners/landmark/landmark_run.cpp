@@ -156,8 +156,8 @@ RunResult LandmarkRunRecorder::Finish(const LandmarkWorld& world) {
   for (std::size_t i = 0; i < out.map.landmarks.size(); ++i) {
     out.map.landmarks[i].source_id = landmark_truth[i];
   }
-  if (snapshots_ > 0 && (out.map_history.empty() ||
-                              out.map_history.back().t_s != out.estimate.back().t_s)) {
+  // Start took the first snapshot, and thinning keeps it.
+  if (snapshots_ > 0 && out.map_history.back().t_s != out.estimate.back().t_s) {
     out.map_history.push_back({out.estimate.back().t_s, out.map});
   }
   // A landmark keeps its index for the filter's life, so the final join names it in every

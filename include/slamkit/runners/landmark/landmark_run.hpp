@@ -42,10 +42,10 @@ class LandmarkRunRecorder {
   std::span<const PointObservation> Given(const std::vector<PointObservation>& observations,
                                           const std::vector<LandmarkId>& true_ids);
   void Record(std::vector<AssociationDecision> decisions, const std::vector<LandmarkId>& true_ids);
+  void Snapshot(double t_s);
 
   LandmarkSlamFilter& filter_;
   bool known_association_;
-  void Snapshot(double t_s);
 
   int snapshots_ = 0;
   int snapshot_every_ = 1;  // steps between snapshots, doubled whenever 2 × snapshots_ are held

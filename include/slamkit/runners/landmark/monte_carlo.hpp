@@ -115,7 +115,8 @@ struct MonteCarloParams {
   // Runs simulated in parallel before they are aggregated and dropped (memory holds one batch).
   int batch_runs = 64;
   // Runs 0 .. map_history_runs - 1 keep map_snapshots to 2 × map_snapshots snapshots of their
-  // map for the replay viewer (RunResult::map_history); the others keep none, so the outputs stay small.
+  // map for the replay viewer (RunResult::map_history); the others keep none, so the outputs
+  // stay small.
   int map_history_runs = 1;
   int map_snapshots = 40;
 };
