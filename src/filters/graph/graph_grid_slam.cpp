@@ -18,7 +18,7 @@ Eigen::Matrix3d Information(double sigma_xy_m, double sigma_theta_rad) {
 }
 
 PoseGraphEdge ClosureEdge(const LoopClosure& c, const LoopClosureParams& p) {
-  return {c.origin_node, c.node, c.relative, Information(p.sigma_xy_m, p.sigma_theta_rad)};
+  return {c.anchor_node, c.node, c.relative, Information(p.sigma_xy_m, p.sigma_theta_rad)};
 }
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -227,7 +227,7 @@ void GraphGridSlam::CountDisagreeing() {
   stats_.loop_closures_disagreeing = stats_.false_closures_disagreeing = 0;
   for (std::size_t i = 0; i < closures_.size(); ++i) {
     const LoopClosure& c = closures_[i];
-    const Pose2 error = c.relative.Between(GlobalPose(c.origin_node).Between(GlobalPose(c.node)));
+    const Pose2 error = c.relative.Between(GlobalPose(c.anchor_node).Between(GlobalPose(c.node)));
     const Eigen::Vector3d e = error.vector();
     if (e.dot(info * e) <= 14.16) continue;
     ++(injected_[i] ? stats_.false_closures_disagreeing : stats_.loop_closures_disagreeing);

@@ -20,9 +20,28 @@ bool SubmapWithinReach(const Submap& submap, const Pose2& node_in_local,
                        const CorrelativeWindow& window, const LoopClosureParams& params) {
   const double reach = window.linear_m * M_SQRT2 + params.max_node_distance_m;
   const Eigen::Vector2d at = node_in_local.translation();
-  return std::any_of(submap.positions.begin(), submap.positions.end(),
-                     [&](const Eigen::Vector2d& p) { return (p - at).norm() <= reach; });
+  return std::any_of(submap.poses.begin(), submap.poses.end(),
+                     [&](const Pose2& p) { return (p.translation() - at).norm() <= reach; });
 }
+
+// The submap's node nearest to `at` (local frame). A closure is tied to it rather than to the
+// submap's first node: the map where the scan matched is that node's scans and its neighbours',
+// placed by the front end relative to it, while the first node may be a hundred nodes of
+// front-end drift away.
+namespace {
+
+std::size_t NearestNode(const Submap& submap, const Eigen::Vector2d& at) {
+  std::size_t nearest = 0;
+  for (std::size_t k = 1; k < submap.poses.size(); ++k) {
+    if ((submap.poses[k].translation() - at).squaredNorm() <
+        (submap.poses[nearest].translation() - at).squaredNorm()) {
+      nearest = k;
+    }
+  }
+  return nearest;
+}
+
+}  // namespace
 
 // Hess et al. 2016, Section V: branch and bound over the window, then a fine match from its
 // result (their Ceres refinement; here the hill climb of the front end).
@@ -36,8 +55,9 @@ std::optional<LoopClosure> MatchLoopClosure(int node, const Submap& submap,
   if (!coarse) return std::nullopt;
   const MatchResult fine = MatchScan(submap.grid, points, coarse->pose, params.refinement);
   if (!fine.accepted) return std::nullopt;
-  return LoopClosure{node, submap.index, submap.origin_node, submap.origin.Between(fine.pose),
-                     coarse->score};
+  const std::size_t anchor = NearestNode(submap, fine.pose.translation());
+  return LoopClosure{node, submap.index, submap.nodes[anchor],
+                     submap.poses[anchor].Between(fine.pose), coarse->score};
 }
 
 }  // namespace slamkit

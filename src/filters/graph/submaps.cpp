@@ -36,7 +36,7 @@ std::vector<std::shared_ptr<const Submap>> SubmapStack::Insert(int node, const P
     Submap& s = *submaps_[static_cast<std::size_t>(i)];
     InsertScan(s.grid, laser, scan, insertion_);
     s.nodes.push_back(node);
-    s.positions.push_back(pose.translation());
+    s.poses.push_back(pose);
     if (static_cast<int>(s.nodes.size()) >= 2 * params_.nodes_per_submap) {
       s.finished = true;
       finished.push_back(submaps_[static_cast<std::size_t>(i)]);

@@ -96,13 +96,14 @@ TEST(LoopClosureSearch, DriftDistancesFollowTheChainAndTheClosures) {
     input.submaps.push_back(s);
   }
   EXPECT_EQ(DriftDistances(input), (std::vector<double>{31, 21, 11, 1}));
-  input.closures.push_back({.node = 45, .submap = 0, .origin_node = 0, .relative = Pose2(), .score = 1.0});
+  input.closures.push_back({.node = 45, .submap = 0, .anchor_node = 0, .relative = Pose2(), .score = 1.0});
   EXPECT_EQ(DriftDistances(input), (std::vector<double>{1, 11, 11, 1}));
 }
 
 // A submap of the room's scans from a short path; a node's scan from a pose near it, its
-// estimate 0.5 m and 0.08 rad off: the closure gives the node's true pose in the origin's frame
-// (to about half a cell), and none when the truth is outside the window.
+// estimate 0.5 m and 0.08 rad off: the closure gives the node's true pose in the frame of the
+// submap's node nearest to it (to about half a cell), and none when the truth is outside the
+// window.
 TEST(LoopClosureSearch, FindsTheTruePoseFromAnEstimateOffByHalfAMetre) {
   LoopSearchInput input;
   input.nodes_per_submap = 100;
@@ -113,7 +114,7 @@ TEST(LoopClosureSearch, FindsTheTruePoseFromAnEstimateOffByHalfAMetre) {
     const Pose2 pose = submap->origin.Compose(Pose2(0.3 * i, 0.0, 0.05 * i));
     InsertScan(submap->grid, pose, RoomScan(pose));
     submap->nodes.push_back(i);
-    submap->positions.push_back(pose.translation());
+    submap->poses.push_back(pose);
     input.global.push_back(pose);
     input.driven_m.push_back(0.3 * i);
   }
@@ -131,7 +132,10 @@ TEST(LoopClosureSearch, FindsTheTruePoseFromAnEstimateOffByHalfAMetre) {
   params.base_angular_window_rad = 0.12;
   const std::vector<LoopClosure> found = SearchLoopClosures(input, params);
   ASSERT_EQ(found.size(), 1u);
-  const Pose2 expected = submap->origin.Between(truth);
+  // Tied to the submap's node nearest to the match (node 6, 0.52 m away; node 5: 0.56 m), in
+  // whose frame the closure gives the true pose.
+  EXPECT_EQ(found[0].anchor_node, 6);
+  const Pose2 expected = submap->poses[6].Between(truth);
   // Within about half a cell: the walls are only known to their cells.
   EXPECT_LT((found[0].relative.translation() - expected.translation()).norm(), 0.03);
   EXPECT_LT(std::abs(found[0].relative.theta() - expected.theta()), 0.01);

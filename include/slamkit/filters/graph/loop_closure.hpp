@@ -55,12 +55,12 @@ struct LoopClosureParams {
   double sigma_theta_rad = 0.01;
 };
 
-// A constraint between a node and the origin node of a finished submap.
+// A constraint between a node and the node of a finished submap nearest to where it matched.
 struct LoopClosure {
   int node = 0;
   int submap = 0;
-  int origin_node = 0;
-  Pose2 relative;  // the node's pose in its origin node's frame
+  int anchor_node = 0;
+  Pose2 relative;  // the node's pose in the anchor node's frame
   double score = 0.0;  // the correlative score of the match
 };
 

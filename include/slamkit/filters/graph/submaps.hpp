@@ -19,7 +19,7 @@ struct Submap {
   Pose2 origin;         // that node's local pose
   OccupancyGrid grid;   // in the local frame (not the origin's)
   std::vector<int> nodes;                 // the nodes inserted, in order
-  std::vector<Eigen::Vector2d> positions;  // their local positions
+  std::vector<Pose2> poses;  // their local poses
   bool finished = false;
 };
 
