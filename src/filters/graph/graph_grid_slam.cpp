@@ -11,16 +11,6 @@
 namespace slamkit {
 namespace {
 
-Eigen::Matrix3d Information(double sigma_xy_m, double sigma_theta_rad) {
-  return Eigen::Vector3d(1.0 / (sigma_xy_m * sigma_xy_m), 1.0 / (sigma_xy_m * sigma_xy_m),
-                         1.0 / (sigma_theta_rad * sigma_theta_rad))
-      .asDiagonal();
-}
-
-PoseGraphEdge ClosureEdge(const LoopClosure& c, const LoopClosureParams& p) {
-  return {c.anchor_node, c.node, c.relative, Information(p.sigma_xy_m, p.sigma_theta_rad)};
-}
-
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
@@ -123,7 +113,8 @@ Pose2 GraphGridSlam::GlobalPose(int node) const {
 
 PoseGraph GraphGridSlam::BuildGraph(int nodes) const {
   PoseGraph graph;
-  const Eigen::Matrix3d local = Information(params_.local_sigma_xy_m, params_.local_sigma_theta_rad);
+  const Eigen::Matrix3d local =
+      DiagonalInformation(params_.local_sigma_xy_m, params_.local_sigma_theta_rad);
   for (int i = 0; i < nodes; ++i) {
     graph.vertices.push_back({i, GlobalPose(i)});
     if (i > 0) {
@@ -134,7 +125,7 @@ PoseGraph GraphGridSlam::BuildGraph(int nodes) const {
     }
   }
   for (const LoopClosure& c : closures_) {
-    if (c.node < nodes) graph.edges.push_back(ClosureEdge(c, params_.loop));
+    if (c.node < nodes) graph.edges.push_back(LoopClosureEdge(c, params_.loop));
   }
   return graph;
 }
@@ -172,7 +163,7 @@ void GraphGridSlam::StartJob(bool final) {
     const auto start = std::chrono::steady_clock::now();
     result->closures = SearchLoopClosures(input, loop);
     result->search_time_s = Seconds(start);
-    for (const LoopClosure& c : result->closures) graph.edges.push_back(ClosureEdge(c, loop));
+    for (const LoopClosure& c : result->closures) graph.edges.push_back(LoopClosureEdge(c, loop));
     const PoseGraphSolution solution = OptimizePoseGraph(graph, input.global, optimizer);
     result->optimization_time_s = solution.time_s;
     result->poses = solution.poses;
@@ -223,13 +214,12 @@ void GraphGridSlam::Finish() {
 // A closure disagrees with the solution when its whitened squared residual is beyond χ²(3)'s
 // 99.7 % quantile (14.16): the loss has discounted it rather than the map following it.
 void GraphGridSlam::CountDisagreeing() {
-  const Eigen::Matrix3d info = Information(params_.loop.sigma_xy_m, params_.loop.sigma_theta_rad);
   stats_.loop_closures_disagreeing = stats_.false_closures_disagreeing = 0;
   for (std::size_t i = 0; i < closures_.size(); ++i) {
     const LoopClosure& c = closures_[i];
     const Pose2 error = c.relative.Between(GlobalPose(c.anchor_node).Between(GlobalPose(c.node)));
     const Eigen::Vector3d e = error.vector();
-    if (e.dot(info * e) <= 14.16) continue;
+    if (e.dot(LoopClosureEdge(c, params_.loop).information * e) <= 14.16) continue;
     ++(injected_[i] ? stats_.false_closures_disagreeing : stats_.loop_closures_disagreeing);
   }
 }

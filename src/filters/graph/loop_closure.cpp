@@ -10,6 +10,21 @@
 
 namespace slamkit {
 
+Eigen::Matrix3d DiagonalInformation(double sigma_xy_m, double sigma_theta_rad) {
+  return Eigen::Vector3d(1.0 / (sigma_xy_m * sigma_xy_m), 1.0 / (sigma_xy_m * sigma_xy_m),
+                         1.0 / (sigma_theta_rad * sigma_theta_rad))
+      .asDiagonal();
+}
+
+PoseGraphEdge LoopClosureEdge(const LoopClosure& closure, const LoopClosureParams& params) {
+  const Eigen::Matrix3d full = DiagonalInformation(params.sigma_xy_m, params.sigma_theta_rad);
+  if (closure.keep.isIdentity()) return {closure.anchor_node, closure.node, closure.relative, full};
+  constexpr double kUnconstrained = 1e-4;  // information, so σ 100 times the closure's
+  const Eigen::Matrix3d info =
+      closure.keep.transpose() * full * closure.keep + kUnconstrained * full;
+  return {closure.anchor_node, closure.node, closure.relative, 0.5 * (info + info.transpose())};
+}
+
 CorrelativeWindow LoopWindow(const LoopClosureParams& p, double driven_m) {
   return {std::min(p.max_linear_window_m, p.base_linear_window_m + p.linear_window_growth * driven_m),
           std::min(p.max_angular_window_rad,
@@ -57,7 +72,8 @@ std::optional<LoopClosure> MatchLoopClosure(int node, const Submap& submap,
   if (!fine.accepted) return std::nullopt;
   const std::size_t anchor = NearestNode(submap, fine.pose.translation());
   return LoopClosure{node, submap.index, submap.nodes[anchor],
-                     submap.poses[anchor].Between(fine.pose), coarse->score};
+                     submap.poses[anchor].Between(fine.pose), coarse->score,
+                     fine.constraints.keep};
 }
 
 }  // namespace slamkit

@@ -139,6 +139,10 @@ TEST(LoopClosureSearch, FindsTheTruePoseFromAnEstimateOffByHalfAMetre) {
   // Within about half a cell: the walls are only known to their cells.
   EXPECT_LT((found[0].relative.translation() - expected.translation()).norm(), 0.03);
   EXPECT_LT(std::abs(found[0].relative.theta() - expected.theta()), 0.01);
+  // A room constrains every direction: the closure's edge has its σ in all three.
+  EXPECT_TRUE(found[0].keep.isIdentity());
+  EXPECT_EQ(LoopClosureEdge(found[0], params).information,
+            DiagonalInformation(params.sigma_xy_m, params.sigma_theta_rad));
   params.base_linear_window_m = 0.2;  // the true pose outside the window: no closure
   params.linear_window_growth = 0.0;
   params.matcher.min_score = 0.8;

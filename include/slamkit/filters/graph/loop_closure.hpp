@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "slamkit/core/pose2.hpp"
+#include "slamkit/core/pose_graph.hpp"
 #include "slamkit/filters/graph/correlative_matcher.hpp"
 #include "slamkit/filters/graph/submaps.hpp"
 #include "slamkit/filters/grid/scan_matcher.hpp"
@@ -62,7 +63,18 @@ struct LoopClosure {
   int anchor_node = 0;
   Pose2 relative;  // the node's pose in the anchor node's frame
   double score = 0.0;  // the correlative score of the match
+  // The directions of `relative` the scan constrains: the fine match's
+  // MatchConstraints::keep, a move (dx, dy, dθ) in the node's frame to its constrained part.
+  Eigen::Matrix3d keep = Eigen::Matrix3d::Identity();
 };
+
+// diag(1/σ_xy², 1/σ_xy², 1/σ_θ²).
+Eigen::Matrix3d DiagonalInformation(double sigma_xy_m, double sigma_theta_rad);
+
+// A closure's edge from its anchor node to its node: σ (params' sigma_xy_m, sigma_theta_rad) in
+// the directions its scan constrains and 100 σ in those it does not, since there (along a
+// corridor) the match is where the search happened to stop, not a measurement.
+PoseGraphEdge LoopClosureEdge(const LoopClosure& closure, const LoopClosureParams& params);
 
 // The window LoopClosureParams gives after `driven_m` metres without a closure.
 CorrelativeWindow LoopWindow(const LoopClosureParams& params, double driven_m);
