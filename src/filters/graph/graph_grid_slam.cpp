@@ -157,14 +157,18 @@ void GraphGridSlam::StartJob(bool final) {
   optimizer.parameter_tolerance = 1e-9;
   optimizer.loop_closure_loss = params_.loop_loss;
   const LoopClosureParams loop = params_.loop;
+  const LoopGroupParams groups = params_.loop_groups;
   job_ = std::async(std::launch::async, [input = std::move(input), graph = std::move(graph),
-                                         optimizer, loop]() mutable {
+                                         optimizer, loop, groups]() mutable {
     auto result = std::make_unique<JobResult>();
     const auto start = std::chrono::steady_clock::now();
     result->closures = SearchLoopClosures(input, loop);
     result->search_time_s = Seconds(start);
+    // Groups are tried where this search added to them: an older group has failed before.
+    const int first_new = static_cast<int>(graph.edges.size());
     for (const LoopClosure& c : result->closures) graph.edges.push_back(LoopClosureEdge(c, loop));
-    const PoseGraphSolution solution = OptimizePoseGraph(graph, input.global, optimizer);
+    const PoseGraphSolution solution =
+        OptimizeWithLoopGroups(graph, input.global, optimizer, groups, first_new);
     result->optimization_time_s = solution.time_s;
     result->poses = solution.poses;
     result->chi2 = solution.chi2;

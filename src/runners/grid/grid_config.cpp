@@ -184,6 +184,25 @@ void AddGrid(OccupancyGridParams& g, ParamTable& t) {
   t.insert(t.end(), lines.begin(), lines.end());
 }
 
+void AddLoopGroups(LoopGroupParams& p, ParamTable& t) {
+  using config::Integer;
+  using config::Number;
+  const std::string s = "graph.loop_groups";
+  const ParamTable lines = {
+      Integer(s, "min_size", &p.min_size, 0,
+              "closures a group of agreeing ones needs to be tried against the loss (0: off)"),
+      Integer(s, "max_node_gap", &p.max_node_gap, 1,
+              "closures this many nodes apart or more start another group"),
+      Number(s, "max_translation_m", &p.max_translation_m, kNonNeg, "m",
+             "two closures agree when they place their nodes as the chain does to this ..."),
+      Number(s, "max_rotation_rad", &p.max_rotation_rad, kNonNeg, "rad", "... and this"),
+      Integer(s, "max_groups", &p.max_groups, 0, "groups tried per optimisation"),
+      Number(s, "agreement_chi2", &p.agreement_chi2, kPos, "",
+             "a closure agrees with a solution when its whitened squared residual is at most this"),
+  };
+  t.insert(t.end(), lines.begin(), lines.end());
+}
+
 void AddGraph(GraphGridSlamParams& g, ParamTable& t) {
   using config::Integer;
   using config::Number;
@@ -249,6 +268,7 @@ void AddGraph(GraphGridSlamParams& g, ParamTable& t) {
   t.insert(t.end(), lines.begin(), lines.end());
   AddMatcher("graph.matcher", g.matcher, t);
   AddMatcher("graph.loop.refinement", c.refinement, t);
+  AddLoopGroups(g.loop_groups, t);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "slamkit/core/pose_graph.hpp"
 #include "slamkit/core/trajectory.hpp"
 #include "slamkit/filters/graph/loop_closure.hpp"
+#include "slamkit/filters/graph/loop_groups.hpp"
 #include "slamkit/filters/graph/submaps.hpp"
 #include "slamkit/filters/grid/scan_matcher.hpp"
 #include "slamkit/filters/grid_slam.hpp"
@@ -56,6 +57,8 @@ struct GraphGridSlamParams {
   // The loss of loop closures in the optimisation, so a false one cannot tear the map: DCS
   // (Agarwal et al. 2013), a closure costing at most 3Φ; Φ = 9 is a 3σ residual.
   RobustLossParams loop_loss{.kind = RobustLossKind::kDcs, .scale = 9.0};
+  // Groups of closures that agree with one another, tried against the loss (loop_groups.hpp).
+  LoopGroupParams loop_groups;
   // The loop-closure search and the optimisation run in a background thread on the graph as it
   // was every this many nodes; their result is taken in at the next such point (so a seed and a
   // log fix the output whatever the timing).
