@@ -215,15 +215,16 @@ void GraphGridSlam::Finish() {
   CountDisagreeing();
 }
 
-// A closure disagrees with the solution when its whitened squared residual is beyond χ²(3)'s
-// 99.7 % quantile (14.16): the loss has discounted it rather than the map following it.
+// A closure disagrees with the solution when its whitened squared residual is beyond
+// loop_groups.agreement_chi2 (χ²(3)'s 99.7 % quantile): the loss has discounted it rather than
+// the map following it.
 void GraphGridSlam::CountDisagreeing() {
+  std::vector<Pose2> poses;
+  for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) poses.push_back(GlobalPose(i));
   stats_.loop_closures_disagreeing = stats_.false_closures_disagreeing = 0;
   for (std::size_t i = 0; i < closures_.size(); ++i) {
-    const LoopClosure& c = closures_[i];
-    const Pose2 error = c.relative.Between(GlobalPose(c.anchor_node).Between(GlobalPose(c.node)));
-    const Eigen::Vector3d e = error.vector();
-    if (e.dot(LoopClosureEdge(c, params_.loop).information * e) <= 14.16) continue;
+    const PoseGraphEdge edge = LoopClosureEdge(closures_[i], params_.loop);
+    if (ClosureAgrees(edge, poses, params_.loop_groups.agreement_chi2)) continue;
     ++(injected_[i] ? stats_.false_closures_disagreeing : stats_.loop_closures_disagreeing);
   }
 }

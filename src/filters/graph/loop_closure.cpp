@@ -39,12 +39,12 @@ bool SubmapWithinReach(const Submap& submap, const Pose2& node_in_local,
                      [&](const Pose2& p) { return (p.translation() - at).norm() <= reach; });
 }
 
+namespace {
+
 // The submap's node nearest to `at` (local frame). A closure is tied to it rather than to the
 // submap's first node: the map where the scan matched is that node's scans and its neighbours',
 // placed by the front end relative to it, while the first node may be a hundred nodes of
 // front-end drift away.
-namespace {
-
 std::size_t NearestNode(const Submap& submap, const Eigen::Vector2d& at) {
   std::size_t nearest = 0;
   for (std::size_t k = 1; k < submap.poses.size(); ++k) {

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "slamkit/core/angle.hpp"
-
 namespace slamkit {
 namespace {
 
@@ -26,7 +24,7 @@ bool Agree(const PoseGraphEdge& a, const PoseGraphEdge& b, const std::vector<Pos
   const Pose2 by_chain = At(poses, a.to).Between(At(poses, b.to));
   const Pose2 error = by_chain.Between(by_closures);
   return error.translation().norm() <= params.max_translation_m &&
-         std::abs(WrapAngle(error.theta())) <= params.max_rotation_rad;
+         std::abs(error.theta()) <= params.max_rotation_rad;  // Pose2 keeps θ in (−π, π]
 }
 
 // The largest subset of `members` (edge indices) whose closures all agree pairwise, found
@@ -78,8 +76,7 @@ int CountAgreeing(const PoseGraph& graph, const std::vector<Pose2>& poses, doubl
 
 bool ClosureAgrees(const PoseGraphEdge& edge, const std::vector<Pose2>& poses, double chi2) {
   const Pose2 error = edge.measurement.Between(At(poses, edge.from).Between(At(poses, edge.to)));
-  Eigen::Vector3d e = error.vector();
-  e.z() = WrapAngle(e.z());
+  const Eigen::Vector3d e = error.vector();
   return e.dot(edge.information * e) <= chi2;
 }
 
