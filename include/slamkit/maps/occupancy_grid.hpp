@@ -158,8 +158,13 @@ class OccupancyGrid {
 template <class ForEachCell>
 void OccupancyGrid::UpdateStepsAlong(const ForEachCell& for_each_cell, long delta_steps) {
   constexpr int kMask = kTileSize - 1;
+  // Locals, not members, inside the loop: a store to a cell (a char type) may alias any member,
+  // so members read in the loop would be loaded again after every cell written.
+  const long min_steps = min_steps_, max_steps = max_steps_;
   Tile* tile = nullptr;
   int tile_x = 0, tile_y = 0;
+  bool any = false;
+  CellIndex lo{0, 0}, hi{0, 0};
   for_each_cell([&](const CellIndex& c) {
     const int x = c.x, y = c.y;  // read one int at a time: see UpdateSteps
     if (tile == nullptr || (x >> kTileBits) != tile_x || (y >> kTileBits) != tile_y) {
@@ -168,9 +173,17 @@ void OccupancyGrid::UpdateStepsAlong(const ForEachCell& for_each_cell, long delt
       tile = &MutableTile(tile_x, tile_y);
     }
     CellValue& l = (*tile)[(y & kMask) * kTileSize + (x & kMask)];
-    l = static_cast<CellValue>(std::clamp(l + delta_steps, min_steps_, max_steps_));
-    ExtendBounds(x, y);
+    l = static_cast<CellValue>(std::clamp(l + delta_steps, min_steps, max_steps));
+    if (!any) {
+      lo = hi = {x, y};
+      any = true;
+    }
+    lo = {std::min(lo.x, x), std::min(lo.y, y)};
+    hi = {std::max(hi.x, x), std::max(hi.y, y)};
   });
+  if (!any) return;
+  ExtendBounds(lo.x, lo.y);
+  ExtendBounds(hi.x, hi.y);
 }
 
 // Cells on the digital line from `from` to `to` (integer Bresenham), both ends included, in order.

@@ -65,6 +65,9 @@ double NearestHitInTile(const OccupancyGrid::CellValue* tile, const OccupancyGri
   const int hit0 = (c.y & kMask) * kSize + (c.x & kMask);
   const int free_offset = (f.y - c.y) * kSize + (f.x - c.x);
   const double r = grid.resolution();
+  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells are
+  // the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
+  if (tile[hit0] > 0 && tile[hit0 + free_offset] < 0) return (grid.CellCenter(c) - end).squaredNorm();
   return NearestInRings(window, r, [&](int dx, int dy) {
     const int hit = hit0 + dy * kSize + dx;
     if (tile[hit] <= 0 || tile[hit + free_offset] >= 0) {
@@ -99,19 +102,20 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
   const double r = grid.resolution();
   const CellIndex c = grid.WorldToCell(end);
   const CellIndex f = grid.WorldToCell(end - r * direction);
-  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells are
-  // the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
-  if (cells(c) > 0 && cells(f) < 0) {
-    return (grid.CellCenter(c) - end).squaredNorm();
-  }
   if constexpr (Cells::kTiles) {
-    // f is a neighbour of c, so every cell read lies within window + 1 of c.
+    // f is a neighbour of c, so every cell read lies within window + 1 of c: where that square
+    // lies inside c's tile, the tile is looked up once for all of them.
     constexpr int kMask = OccupancyGrid::kTileSize - 1;
     const int margin = window + 1;
     if ((c.x & kMask) >= margin && (c.x & kMask) < kMask + 1 - margin && (c.y & kMask) >= margin &&
         (c.y & kMask) < kMask + 1 - margin) {
       return NearestHitInTile(grid.TileSteps(c), grid, end, c, f, window);
     }
+  }
+  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells are
+  // the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
+  if (cells(c) > 0 && cells(f) < 0) {
+    return (grid.CellCenter(c) - end).squaredNorm();
   }
   return NearestInRings(window, r, [&](int dx, int dy) {
     const CellIndex hit{c.x + dx, c.y + dy};
