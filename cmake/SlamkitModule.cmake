@@ -3,9 +3,13 @@
 function(slamkit_target_options target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Werror -Wpedantic)
   if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
-    # Clang fuses a * b + c into one FMA by default (-ffp-contract=on), GCC in ISO C++ mode does
-    # not: without this the same seed gives another result under clang (the k-means, selection
-    # and delayed-sampling tests' seeds landed elsewhere), where a seed must fix the output.
+    # Without this the same seed gave another result under clang (the k-means, selection and
+    # delayed-sampling tests' seeds landed elsewhere). It does not make clang's output GCC's:
+    # GCC 12 fuses a * b + c into one FMA in C++ too (-ffp-contract=fast, its default outside
+    # ISO C), wherever -march=native offers FMA, and clang with this flag never does. So figures
+    # are reproducible for one compiler and one -march, bit for bit, not across them; a grid
+    # run's match distances differ in their last bits between the matcher's two code paths for
+    # the same reason (docs/architecture.md, "Reproducibility").
     target_compile_options(${target} PRIVATE -ffp-contract=off)
   endif()
   set_target_properties(${target} PROPERTIES UNITY_BUILD ${SLAMKIT_UNITY_BUILD})
