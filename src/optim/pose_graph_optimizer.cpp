@@ -19,6 +19,15 @@ namespace slamkit {
 namespace {
 
 template <class Factor>
+double EdgeObjective(const PoseGraphEdge& e, const Pose2& from, const Pose2& to) {
+  const Eigen::Vector3d xi = from.vector(), xj = to.vector();
+  const double* parameters[] = {xi.data(), xj.data()};
+  Eigen::Vector3d r;
+  Factor(e).Evaluate(parameters, r.data(), nullptr);
+  return r.squaredNorm();
+}
+
+template <class Factor>
 double Objective(const PoseGraph& graph, const std::vector<Pose2>& poses) {
   if (poses.size() != graph.vertices.size()) {
     throw std::invalid_argument("pose graph: one pose per vertex is needed");
@@ -26,11 +35,7 @@ double Objective(const PoseGraph& graph, const std::vector<Pose2>& poses) {
   const internal::VertexIndex index(graph);
   double sum = 0.0;
   for (const PoseGraphEdge& e : graph.edges) {
-    const Eigen::Vector3d xi = poses[index(e.from)].vector(), xj = poses[index(e.to)].vector();
-    const double* parameters[] = {xi.data(), xj.data()};
-    Eigen::Vector3d r;
-    Factor(e).Evaluate(parameters, r.data(), nullptr);
-    sum += r.squaredNorm();
+    sum += EdgeObjective<Factor>(e, poses[index(e.from)], poses[index(e.to)]);
   }
   return sum;
 }
@@ -87,6 +92,10 @@ std::vector<Pose2> InitialPoses(const PoseGraph& graph) {
 
 double Chi2(const PoseGraph& graph, const std::vector<Pose2>& poses) {
   return Objective<RelativePoseChi2Factor>(graph, poses);
+}
+
+double EdgeChi2(const PoseGraphEdge& edge, const Pose2& from, const Pose2& to) {
+  return EdgeObjective<RelativePoseChi2Factor>(edge, from, to);
 }
 
 double SeSyncObjective(const PoseGraph& graph, const std::vector<Pose2>& poses) {

@@ -163,8 +163,8 @@ void OccupancyGrid::UpdateStepsAlong(const ForEachCell& for_each_cell, long delt
   const long min_steps = min_steps_, max_steps = max_steps_;
   Tile* tile = nullptr;
   int tile_x = 0, tile_y = 0;
-  bool any = false;
-  CellIndex lo{0, 0}, hi{0, 0};
+  CellIndex lo{std::numeric_limits<int>::max(), std::numeric_limits<int>::max()};
+  CellIndex hi{std::numeric_limits<int>::min(), std::numeric_limits<int>::min()};
   for_each_cell([&](const CellIndex& c) {
     const int x = c.x, y = c.y;  // read one int at a time: see UpdateSteps
     if (tile == nullptr || (x >> kTileBits) != tile_x || (y >> kTileBits) != tile_y) {
@@ -174,14 +174,10 @@ void OccupancyGrid::UpdateStepsAlong(const ForEachCell& for_each_cell, long delt
     }
     CellValue& l = (*tile)[(y & kMask) * kTileSize + (x & kMask)];
     l = static_cast<CellValue>(std::clamp(l + delta_steps, min_steps, max_steps));
-    if (!any) {
-      lo = hi = {x, y};
-      any = true;
-    }
     lo = {std::min(lo.x, x), std::min(lo.y, y)};
     hi = {std::max(hi.x, x), std::max(hi.y, y)};
   });
-  if (!any) return;
+  if (lo.x > hi.x) return;  // no cell written
   ExtendBounds(lo.x, lo.y);
   ExtendBounds(hi.x, hi.y);
 }

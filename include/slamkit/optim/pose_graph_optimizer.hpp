@@ -66,6 +66,8 @@ std::vector<Pose2> InitialPoses(const PoseGraph& graph);
 std::vector<Pose2> ChordalInitialization(const PoseGraph& graph);
 
 double Chi2(const PoseGraph& graph, const std::vector<Pose2>& poses);
+// One edge's term of Chi2: eᵀ Ω e with `from` and `to` its vertices' poses.
+double EdgeChi2(const PoseGraphEdge& edge, const Pose2& from, const Pose2& to);
 double SeSyncObjective(const PoseGraph& graph, const std::vector<Pose2>& poses);
 
 }  // namespace slamkit

@@ -75,9 +75,7 @@ int CountAgreeing(const PoseGraph& graph, const std::vector<Pose2>& poses, doubl
 }  // namespace
 
 bool ClosureAgrees(const PoseGraphEdge& edge, const std::vector<Pose2>& poses, double chi2) {
-  const Pose2 error = edge.measurement.Between(At(poses, edge.from).Between(At(poses, edge.to)));
-  const Eigen::Vector3d e = error.vector();
-  return e.dot(edge.information * e) <= chi2;
+  return EdgeChi2(edge, At(poses, edge.from), At(poses, edge.to)) <= chi2;
 }
 
 std::vector<std::vector<int>> ConsistentLoopGroups(const PoseGraph& graph,
@@ -125,13 +123,13 @@ PoseGraphSolution OptimizeWithLoopGroups(const PoseGraph& graph, const std::vect
   plain.loop_closure_loss = RobustLossParams{.kind = RobustLossKind::kNone};
   std::vector<std::vector<int>> found = ConsistentLoopGroups(graph, best.poses, groups);
   std::size_t next = 0;
-  for (int tried = 0; tried < groups.max_groups && next < found.size(); ++tried) {
+  for (int tried = 0; tried < groups.max_groups && next < found.size();) {
     const std::vector<int>& group = found[next];
     if (std::none_of(group.begin(), group.end(), [&](int k) { return k >= first_new_edge; })) {
       ++next;
-      --tried;
       continue;
     }
+    ++tried;
     PoseGraph pulled{graph.vertices, {}};
     for (const PoseGraphEdge& e : graph.edges) {
       if (!IsClosure(e)) pulled.edges.push_back(e);

@@ -67,7 +67,9 @@ double NearestHitInTile(const OccupancyGrid::CellValue* tile, const OccupancyGri
   const double r = grid.resolution();
   // A point is nearer to the centre of its own cell than to any other cell's centre (the cells are
   // the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
-  if (tile[hit0] > 0 && tile[hit0 + free_offset] < 0) return (grid.CellCenter(c) - end).squaredNorm();
+  if (tile[hit0] > 0 && tile[hit0 + free_offset] < 0) {
+    return (grid.CellCenter(c) - end).squaredNorm();
+  }
   return NearestInRings(window, r, [&](int dx, int dy) {
     const int hit = hit0 + dy * kSize + dx;
     if (tile[hit] <= 0 || tile[hit + free_offset] >= 0) {
@@ -112,8 +114,7 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
       return NearestHitInTile(grid.TileSteps(c), grid, end, c, f, window);
     }
   }
-  // A point is nearer to the centre of its own cell than to any other cell's centre (the cells are
-  // the centres' Voronoi regions), so a hit in the end cell ends the search exactly.
+  // A hit in the end cell ends the search exactly (as in NearestHitInTile).
   if (cells(c) > 0 && cells(f) < 0) {
     return (grid.CellCenter(c) - end).squaredNorm();
   }
