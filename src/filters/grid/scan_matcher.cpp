@@ -127,6 +127,22 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
   });
 }
 
+// A beam's score width (as 1/σ²) and search window in cells.
+struct BeamKernel {
+  double inv_sigma_sq;
+  int window;
+};
+
+// ScanMatcherParams::score_sigma_per_m: σ = hypot(score_sigma_m, score_sigma_per_m × range), the
+// window wide enough to hold σ. A heading error δ moves an end at range r by r·δ; a kernel that
+// grows with r keeps far ends in reach of the wall they belong to.
+BeamKernel RangeScaledKernel(const Eigen::Vector2d& end, const ScanMatcherParams& params,
+                             double resolution) {
+  const double sigma = std::hypot(params.score_sigma_m, params.score_sigma_per_m * end.norm());
+  return {1.0 / (sigma * sigma),
+          std::max(params.search_cells, static_cast<int>(std::ceil(sigma / resolution)))};
+}
+
 // Without kScore the score (an exp per beam) is left at zero, for callers that need only the
 // log-likelihood.
 template <bool kScore, class Cells>
@@ -141,13 +157,16 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
   const double miss_sq = std::pow((params.search_cells + 1) * grid.resolution(), 2);
   const Eigen::Matrix2d R = pose.rotation();
   const Eigen::Vector2d t = pose.translation();
+  const bool scaled = params.score_sigma_per_m > 0.0;
   for (std::size_t i = 0; i < points.ends.size(); ++i) {
+    const BeamKernel kernel = scaled ? RangeScaledKernel(points.ends[i], params, grid.resolution())
+                                     : BeamKernel{inv_score, params.search_cells};
     const double d_sq = NearestHitDistanceSq(grid, cells, R * points.ends[i] + t,
-                                             R * points.directions[i], params.search_cells);
+                                             R * points.directions[i], kernel.window);
     if (std::isfinite(d_sq)) {
       if (hits != nullptr) (*hits)[i] = 1;
       ++q.matched;
-      if constexpr (kScore) q.score += std::exp(-d_sq * inv_score);
+      if constexpr (kScore) q.score += std::exp(-d_sq * kernel.inv_sigma_sq);
       q.log_likelihood -= std::min(d_sq, miss_sq) * inv_like;
     } else {
       q.log_likelihood -= miss_sq * inv_like;
@@ -286,6 +305,7 @@ Pose2 CoarseStart(const GridMapView& grid, const ScanPoints& points, const Pose2
   ScanMatcherParams coarse = params;
   coarse.search_cells = params.coarse_search_cells;
   coarse.score_sigma_m = params.coarse_score_sigma_m;
+  coarse.score_sigma_per_m = params.coarse_score_sigma_per_m;
   coarse.refinements = params.coarse_refinements;
   const ScanPoints coarse_points = EveryNth(points, params.coarse_beam_stride);
   const Pose2 start = params.heading_sweep_rad > 0.0
@@ -309,6 +329,24 @@ void WidenHeadings(const GridMapView& grid, const ScanPoints& points, const Pose
   }
 }
 
+// ScanMatcherParams::rescue_sigma_per_m: the whole match again with range-scaled kernels and,
+// if that one is accepted, the plain fine climb from where it ended. `rejected` is replaced
+// only then.
+void RescueMatch(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
+                 const ScanMatcherParams& params, MatchResult* rejected) {
+  ScanMatcherParams wide = params;
+  wide.score_sigma_per_m = wide.coarse_score_sigma_per_m = params.rescue_sigma_per_m;
+  wide.rescue_sigma_per_m = 0.0;
+  const MatchResult found = MatchScan(grid, points, initial, wide);
+  if (!found.accepted) return;
+  ScanMatcherParams fine = params;
+  fine.coarse_pass = false;
+  fine.widen_below_score_fraction = 0.0;
+  fine.rescue_sigma_per_m = 0.0;
+  *rejected = MatchScan(grid, points, found.pose, fine);
+  rejected->accepted = true;
+}
+
 }  // namespace
 
 MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
@@ -320,6 +358,9 @@ MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const P
   }
   KeepGuessWhereUnconstrained(grid, points, initial, params, &best);
   best.accepted = !points.ends.empty() && best.quality.score >= params.min_score_fraction * n;
+  if (!best.accepted && params.rescue_sigma_per_m > 0.0) {
+    RescueMatch(grid, points, initial, params, &best);
+  }
   return best;
 }
 

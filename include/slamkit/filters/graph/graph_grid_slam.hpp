@@ -20,6 +20,16 @@
 
 namespace slamkit {
 
+// The front end's matcher: the grid filter's, with a rejected match rescued by kernels widened
+// by 0.02 m per metre of range (ScanMatcherParams::rescue_sigma_per_m): 0.02 rad is the heading
+// error the grid filter's motion model allows over the CARMEN suite's 1 m steps (str = 0.02
+// rad/m), and one front end has no other hypothesis to fall back on (docs/posegraph.md).
+inline ScanMatcherParams FrontEndMatcherParams() {
+  ScanMatcherParams params;
+  params.rescue_sigma_per_m = 0.02;
+  return params;
+}
+
 struct GraphGridSlamParams {
   // The laser and the maps, as RbpfGridSlamParams has them (MakeGridSlam copies them from the
   // config's top level, which both back ends share).
@@ -30,7 +40,7 @@ struct GraphGridSlamParams {
   Pose2 initial_pose;
   // The front end: each scan is matched against the matching submap from the previous scan's
   // pose moved by odometry; an unaccepted match keeps the odometry guess.
-  ScanMatcherParams matcher;
+  ScanMatcherParams matcher = FrontEndMatcherParams();
   // A scan this far or further from the one before (by odometry) is sparse: between such scans
   // (a scan a metre, as the CARMEN suite's logs have) odometry can misjudge a turn by more than
   // the climb recovers, and one front end, unlike a particle set, has no other hypothesis. Its

@@ -17,6 +17,11 @@ struct ScanMatcherParams {
   int beam_stride = 1;             // match every k-th beam
   int search_cells = 1;            // window half-width around each beam end, in cells
   double score_sigma_m = 0.05;     // width of each beam's score exp(−d²/σ²)
+  // A beam at range r scores with σ = hypot(score_sigma_m, score_sigma_per_m × r) and searches
+  // a window of at least σ (in cells) around its end: a heading error moves a far end further
+  // than a near one, so far returns still pull the heading when it is off (a heading σ in rad,
+  // in effect). 0: every beam alike.
+  double score_sigma_per_m = 0.0;
   double likelihood_sigma_m = 0.075;  // σ of the per-beam Gaussian in the scan likelihood
   double linear_step_m = 0.05;     // initial hill-climbing steps (halved when stuck)
   double angular_step_rad = 0.05;
@@ -35,6 +40,7 @@ struct ScanMatcherParams {
   double coarse_score_sigma_m = 0.15;
   int coarse_beam_stride = 3;
   int coarse_refinements = 5;
+  double coarse_score_sigma_per_m = 0.0;  // the coarse pass's score_sigma_per_m
   // Before the coarse pass, the coarse score is swept over headings initial ± k·step within this
   // half-width, and the climb starts from the best (the initial heading on ties): a turn that
   // odometry misjudged by more than the climb can recover (CSAIL's odometry is 12° off on one
@@ -48,6 +54,12 @@ struct ScanMatcherParams {
   double widen_below_score_fraction = 0.0;
   double widen_heading_step_rad = 0.06;
   int widen_heading_starts = 2;
+  // A match that is not accepted is tried again with both passes' kernels widened by this
+  // times each beam's range (score_sigma_per_m); if that one is accepted, the fine climb with
+  // these params refines it (a wide kernel is biased by a few centimetres) and the result is
+  // accepted. Where few returns are near (open ground, a hall), a heading error puts the far
+  // ends outside every window and the plain match fails. 0: no second try.
+  double rescue_sigma_per_m = 0.0;
   // Where the scan does not constrain the pose (a featureless corridor), the match keeps the
   // initial guess in that direction (see MatchConstraintParams).
   MatchConstraintParams constraints;
@@ -96,7 +108,8 @@ struct MatchResult {
 
 // Hill climbing from `initial` on the score, with six moves (±x, ±y, ±θ) and step halving;
 // a coarse pass first, then the fine one from its result; then, in the directions the matched
-// beams leave unconstrained, the pose moves back to the guess (MatchConstraintParams).
+// beams leave unconstrained, the pose moves back to the guess (MatchConstraintParams); then,
+// if not accepted, the rescue (rescue_sigma_per_m).
 MatchResult MatchScan(const GridMapView& grid, const ScanPoints& points, const Pose2& initial,
                       const ScanMatcherParams& params);
 
