@@ -39,7 +39,8 @@ struct GraphGridSlamParams {
   OccupancyGridParams grid;
   Pose2 initial_pose;
   // The front end: each scan is matched against the matching submap from the previous scan's
-  // pose moved by odometry; an unaccepted match keeps the odometry guess.
+  // pose moved by odometry; a match not accepted, even after the rescue (FrontEndMatcherParams),
+  // keeps the odometry guess.
   ScanMatcherParams matcher = FrontEndMatcherParams();
   // A scan this far or further from the one before (by odometry) is sparse: between such scans
   // (a scan a metre, as the CARMEN suite's logs have) odometry can misjudge a turn by more than
