@@ -15,6 +15,9 @@ using config::ParamTable;
 constexpr Bound kNonNeg = Bound::kNonNegative;
 constexpr Bound kPos = Bound::kPositive;
 
+// A kernel widened by more (11° of heading) searches hundreds of cells around each beam's end.
+constexpr double kMaxSigmaPerM = 0.2;
+
 void AddMatcher(const std::string& s, ScanMatcherParams& m, ParamTable& t) {
   using config::Flag;
   using config::Integer;
@@ -24,8 +27,9 @@ void AddMatcher(const std::string& s, ScanMatcherParams& m, ParamTable& t) {
       Integer(s, "beam_stride", &m.beam_stride, 1, "match every k-th beam"),
       Integer(s, "search_cells", &m.search_cells, 0, "window half-width around each beam end"),
       Number(s, "score_sigma_m", &m.score_sigma_m, kPos, "m", "width of a beam's score"),
-      Number(s, "score_sigma_per_m", &m.score_sigma_per_m, kNonNeg, "",
-             "... widened by this times the beam's range (0: off)"),
+      config::AtMost(Number(s, "score_sigma_per_m", &m.score_sigma_per_m, kNonNeg, "",
+                            "... widened by this times the beam's range (0: off)"),
+                     kMaxSigmaPerM),
       Number(s, "likelihood_sigma_m", &m.likelihood_sigma_m, kPos, "m",
              "sigma of the per-beam Gaussian in the scan likelihood"),
       Number(s, "linear_step_m", &m.linear_step_m, kPos, "m", "initial hill-climbing step"),
@@ -33,8 +37,9 @@ void AddMatcher(const std::string& s, ScanMatcherParams& m, ParamTable& t) {
       Integer(s, "refinements", &m.refinements, 0, "how many times the steps are halved"),
       Number(s, "min_score_fraction", &m.min_score_fraction, kNonNeg, "",
              "accept a match only if its score is at least this times the beams matched"),
-      Number(s, "rescue_sigma_per_m", &m.rescue_sigma_per_m, kNonNeg, "",
-             "a rejected match is tried again with score_sigma_per_m this (0: off)"),
+      config::AtMost(Number(s, "rescue_sigma_per_m", &m.rescue_sigma_per_m, kNonNeg, "",
+                            "a rejected match is tried again with score_sigma_per_m this (0: off)"),
+                     kMaxSigmaPerM),
       Number(s, "prior_sigma_xy_m", &m.prior_sigma_xy_m, kNonNeg, "m",
              "sigma of the translation prior around the guess (0: none)"),
       Number(s, "prior_sigma_theta_rad", &m.prior_sigma_theta_rad, kNonNeg, "rad",
@@ -45,8 +50,9 @@ void AddMatcher(const std::string& s, ScanMatcherParams& m, ParamTable& t) {
              "the coarse pass's score width"),
       Integer(s, "coarse_beam_stride", &m.coarse_beam_stride, 1, "the coarse pass's stride"),
       Integer(s, "coarse_refinements", &m.coarse_refinements, 0, "the coarse pass's halvings"),
-      Number(s, "coarse_score_sigma_per_m", &m.coarse_score_sigma_per_m, kNonNeg, "",
-             "the coarse pass's score_sigma_per_m"),
+      config::AtMost(Number(s, "coarse_score_sigma_per_m", &m.coarse_score_sigma_per_m, kNonNeg, "",
+                            "the coarse pass's score_sigma_per_m"),
+                     kMaxSigmaPerM),
       Number(s, "heading_sweep_rad", &m.heading_sweep_rad, kNonNeg, "rad",
              "sweep the coarse score over +- this before climbing (0: off)"),
       Number(s, "heading_sweep_step_rad", &m.heading_sweep_step_rad, kPos, "rad",

@@ -79,6 +79,8 @@ TEST_F(GridConfigFile, MistakesNameTheFileLineAndKey) {
       {"usable_range: 30\n", "usable_range"},
       {"sampled_start_fraction: 1.5\n", "key 'sampled_start_fraction': must be at most 1"},
       {"heading_sweep_sigmas: -1\n", "key 'heading_sweep_sigmas': must be >= 0"},
+      {"graph:\n  matcher: {rescue_sigma_per_m: 3}\n",
+       "g.yaml:2: key 'graph.matcher.rescue_sigma_per_m': must be at most 0.2"},
       {"backend: graphs\n", "g.yaml:1: key 'backend': expected one of rbpf, graph, got 'graphs'"}};
   for (const Case& c : cases) {
     const std::string message =
