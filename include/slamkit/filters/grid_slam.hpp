@@ -14,6 +14,8 @@ namespace slamkit {
 struct GraphSlamStats {
   int nodes = 0;
   int submaps = 0;
+  int matches_rescued = 0;         // front-end matches accepted only after the rescue
+  int matches_kept_odometry = 0;   // front-end matches not taken: the odometry guess was kept
   int loop_closures = 0;              // accepted by the search
   int loop_closures_disagreeing = 0;  // of those, whose residual at the final solution is beyond 3σ
   int false_closures_injected = 0;    // a robustness study's (false_closure_fraction)

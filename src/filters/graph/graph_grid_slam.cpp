@@ -70,7 +70,7 @@ bool GraphGridSlam::ProcessScan(const LaserScan& scan) {
 // The front end's pose of a scan `step` (by odometry) after the last: its match against the
 // matching submap from the odometry guess, or the guess where the match is not accepted or, for
 // a dense scan, moves the guess further than dense_max_correction_m (a slide, not a correction).
-Pose2 GraphGridSlam::MatchFrontEnd(const ScanPoints& points, const Pose2& step) const {
+Pose2 GraphGridSlam::MatchFrontEnd(const ScanPoints& points, const Pose2& step) {
   const Pose2 guess = last_local_.Compose(step);
   ScanMatcherParams matcher = params_.matcher;
   const bool sparse = step.translation().norm() >= params_.sparse_step_m ||
@@ -83,7 +83,12 @@ Pose2 GraphGridSlam::MatchFrontEnd(const ScanPoints& points, const Pose2& step) 
   const bool slid = !sparse && params_.dense_max_correction_m > 0.0 &&
                     (match.pose.translation() - guess.translation()).norm() >
                         params_.dense_max_correction_m;
-  return match.accepted && !slid ? match.pose : guess;
+  if (!match.accepted || slid) {
+    ++stats_.matches_kept_odometry;
+    return guess;
+  }
+  stats_.matches_rescued += match.rescued ? 1 : 0;
+  return match.pose;
 }
 
 void GraphGridSlam::AddNode(const LaserScan& scan, const Pose2& local, const ScanPoints& points) {

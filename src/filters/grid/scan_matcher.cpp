@@ -344,7 +344,7 @@ void RescueMatch(const GridMapView& grid, const ScanPoints& points, const Pose2&
   fine.widen_below_score_fraction = 0.0;
   fine.rescue_sigma_per_m = 0.0;
   *rejected = MatchScan(grid, points, found.pose, fine);
-  rejected->accepted = true;
+  rejected->accepted = rejected->rescued = true;
 }
 
 }  // namespace

@@ -46,6 +46,8 @@ void CheckHasScans(const CarmenLog& log) {
 nlohmann::json GraphStatsJson(const GraphSlamStats& g) {
   return {{"nodes", g.nodes},
           {"submaps", g.submaps},
+          {"matches_rescued", g.matches_rescued},
+          {"matches_kept_odometry", g.matches_kept_odometry},
           {"loop_closures", g.loop_closures},
           {"loop_closures_disagreeing", g.loop_closures_disagreeing},
           {"false_closures_injected", g.false_closures_injected},

@@ -191,6 +191,10 @@ TEST(GraphGridSlam, DenseMatchMovingTheGuessTooFarKeepsTheOdometry) {
     GridSlamStats stats;
     const Trajectory path = RunGraph(log, params, 1, &stats);
     EXPECT_EQ(stats.graph->loop_closures, 0);
+    // Every scan after the first is matched once: refused, or taken without a rescue here.
+    const int kept = limit_m < 1e-3 ? static_cast<int>(log.size()) - 1 : 0;
+    EXPECT_EQ(stats.graph->matches_kept_odometry, kept);
+    EXPECT_EQ(stats.graph->matches_rescued, 0);
     std::vector<Pose2> out;
     for (const auto& p : path) out.push_back(p.pose);
     return out;

@@ -301,6 +301,7 @@ TEST(ScanMatcher, RescueMatchesAPoseAmongFarWallsThePlainMatchRejects) {
       params.rescue_sigma_per_m = 0.02;
       const MatchResult rescued = MatchScan(grid, points, guess, params);
       EXPECT_TRUE(rescued.accepted);
+      EXPECT_EQ(rescued.rescued, !plain.accepted);
       if (plain.accepted) {
         EXPECT_EQ(rescued.pose.vector(), plain.pose.vector());
         continue;

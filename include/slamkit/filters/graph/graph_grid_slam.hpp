@@ -122,7 +122,7 @@ class GraphGridSlam final : public GridSlam {
   struct JobResult;
   struct Job;
 
-  Pose2 MatchFrontEnd(const ScanPoints& points, const Pose2& step) const;
+  Pose2 MatchFrontEnd(const ScanPoints& points, const Pose2& step);
   void AddNode(const LaserScan& scan, const Pose2& local, const ScanPoints& points);
   Pose2 GlobalPose(int node) const;
   void TakeJobResult();

@@ -104,6 +104,7 @@ struct MatchResult {
   MatchQuality quality;
   bool accepted = false;  // the score passed min_score_fraction
   MatchConstraints constraints;  // the directions in which the guess was kept
+  bool rescued = false;  // accepted only after the rescue (ScanMatcherParams::rescue_sigma_per_m)
 };
 
 // Hill climbing from `initial` on the score, with six moves (±x, ±y, ±θ) and step halving;
