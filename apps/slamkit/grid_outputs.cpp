@@ -107,6 +107,8 @@ void PrintGridRun(const std::string& source, const GridRunResult& result, int pa
     const GraphSlamStats& g = *result.graph;
     fmt::print("{}: {} scans, {} nodes, {} submaps, {} loop closures ({} disagreeing)\n", source,
                result.scans, g.nodes, g.submaps, g.loop_closures, g.loop_closures_disagreeing);
+    fmt::print("  front end: {} matches rescued, {} left to odometry\n", g.matches_rescued,
+               g.matches_kept_odometry);
   } else {
     fmt::print("{}: {} scans, {} updates, {} resamples, {} particles\n", source, result.scans,
                result.updates, result.resamples, particles);
