@@ -68,8 +68,9 @@ bool GraphGridSlam::ProcessScan(const LaserScan& scan) {
 }
 
 // The front end's pose of a scan `step` (by odometry) after the last: its match against the
-// matching submap from the odometry guess, or the guess where the match is not accepted or, for
-// a dense scan, moves the guess further than dense_max_correction_m (a slide, not a correction).
+// matching submap from the odometry guess (rescued if need be: FrontEndMatcherParams), or the
+// guess where the match is not accepted or, for a dense scan, moves the guess further than
+// dense_max_correction_m (a slide, not a correction). The stats count both outcomes.
 Pose2 GraphGridSlam::MatchFrontEnd(const ScanPoints& points, const Pose2& step) {
   const Pose2 guess = last_local_.Compose(step);
   ScanMatcherParams matcher = params_.matcher;
