@@ -203,18 +203,53 @@ BlockVector BlockEkf::CompressedMean(int block) const {
   const CompressedArea& area = *area_;
   const int lb = area.local_of[block];
   if (lb >= 0) return area.local.Mean(lb);
-  const Block& b = blocks_[block];
-  BlockVector mean = x_.segment(b.offset, b.dim) + area.CrossRows(*this, block) * area.Theta();
-  for (const int c : kinds_[b.kind].angle_components) mean[c] = WrapAngle(mean[c]);
+  BlockVector mean;
+  OutsideMean(block, &mean);
   return mean;
+}
+
+// A block outside the area as the dense filter holds it: x⁰ + C θ, its angles wrapped and its
+// kind's normalise step applied (Synchronise() applies it to the stored state; the dense filter
+// after every downdate). Returns that step's Jacobian (the identity when it changes nothing),
+// which a covariance read applies too.
+BlockMatrix BlockEkf::OutsideMean(int block, BlockVector* mean) const {
+  const Block& b = blocks_[block];
+  *mean = x_.segment(b.offset, b.dim) + area_->CrossRows(*this, block) * area_->Theta();
+  for (const int c : kinds_[b.kind].angle_components) (*mean)[c] = WrapAngle((*mean)[c]);
+  BlockMatrix J = BlockMatrix::Identity(b.dim, b.dim);
+  if (const BlockNormaliser normalise = kinds_[b.kind].normalise) {
+    if (!normalise(*mean, &J)) J = BlockMatrix::Identity(b.dim, b.dim);
+  }
+  return J;
+}
+
+// The normalise step's Jacobian of a block outside the area (see OutsideMean).
+BlockMatrix BlockEkf::OutsideNormaliser(int block) const {
+  BlockVector mean;
+  return OutsideMean(block, &mean);
 }
 
 Eigen::MatrixXd BlockEkf::CompressedCovarianceBlock(int a, int b) const {
   const CompressedArea& area = *area_;
   const int la = area.local_of[a], lb = area.local_of[b];
   if (la >= 0 && lb >= 0) return area.local.CovarianceBlock(la, lb);
-  if (la >= 0) return area.Phi(la) * area.CrossRows(*this, b).transpose();
-  if (lb >= 0) return area.CrossRows(*this, a) * area.Phi(lb).transpose();
+  Eigen::MatrixXd P;
+  if (la >= 0) {
+    P = area.Phi(la) * area.CrossRows(*this, b).transpose();
+  } else if (lb >= 0) {
+    P = area.CrossRows(*this, a) * area.Phi(lb).transpose();
+  } else {
+    P = OutsideCovarianceBlock(a, b);
+  }
+  // An outside block's normalise step, as its mean's read applies it (OutsideMean).
+  if (la < 0 && kinds_[blocks_[a].kind].normalise) P = OutsideNormaliser(a) * P;
+  if (lb < 0 && kinds_[blocks_[b].kind].normalise) P = P * OutsideNormaliser(b).transpose();
+  return P;
+}
+
+// Covariance block (a, b) of two blocks outside the area, before their normalise steps.
+Eigen::MatrixXd BlockEkf::OutsideCovarianceBlock(int a, int b) const {
+  const CompressedArea& area = *area_;
   const Eigen::MatrixXd C_a = area.CrossRows(*this, a), C_b = area.CrossRows(*this, b);
   const Block &ba = blocks_[a], &bb = blocks_[b];
   Eigen::MatrixXd P0(ba.dim, bb.dim);

@@ -17,9 +17,16 @@ void ActiveArea::Synchronise(BlockEkf& ekf) {
   ++stats_.global_updates;
 }
 
-// Guivant & Nebot 2001, Sec. IV: the area is left when the vehicle can reach beyond it.
 void ActiveArea::Maintain(BlockEkf& ekf, int pose_block, std::span<const int> points,
                           double reach_m) {
+  Maintain(ekf, pose_block, points, reach_m, [&ekf](int b, const Eigen::Vector2d& p) {
+    return (ekf.Mean(b) - p).squaredNorm();
+  });
+}
+
+// Guivant & Nebot 2001, Sec. IV: the area is left when the vehicle can reach beyond it.
+void ActiveArea::Maintain(BlockEkf& ekf, int pose_block, std::span<const int> landmarks,
+                          double reach_m, const LandmarkDistanceSq& distance_sq) {
   const Eigen::Vector2d position = ekf.PoseOf(pose_block).translation();
   const double hysteresis_m = params_.hysteresis_fraction * reach_m;
   if (ekf.IsCompressed() && (position - centre_).norm() <= hysteresis_m) {
@@ -33,8 +40,8 @@ void ActiveArea::Maintain(BlockEkf& ekf, int pose_block, std::span<const int> po
   const double radius_m = hysteresis_m + reach_m + params_.sigma_factor * sigma_m;
   centre_ = position;
   std::vector<int> active = {pose_block};
-  for (const int b : points) {
-    if ((ekf.Mean(b) - centre_).squaredNorm() <= radius_m * radius_m) active.push_back(b);
+  for (const int b : landmarks) {
+    if (distance_sq(b, centre_) <= radius_m * radius_m) active.push_back(b);
   }
   ekf.Compress(active);
   stats_.max_active_size = std::max(stats_.max_active_size, ekf.ActiveSize());

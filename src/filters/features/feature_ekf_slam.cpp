@@ -34,6 +34,15 @@ void CheckFinite(const ScanFeatures& scan) {
   }
 }
 
+// The squared distance from `p` to the segment [a, b].
+double SegmentDistanceSq(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                         const Eigen::Vector2d& p) {
+  const Eigen::Vector2d ab = b - a;
+  const double length_sq = ab.squaredNorm();
+  const double t = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).squaredNorm();
+}
+
 }  // namespace
 
 FeatureEkfSlam::FeatureEkfSlam(const FeatureEkfSlamParams& params,
@@ -52,7 +61,11 @@ FeatureEkfSlam::FeatureEkfSlam(const FeatureEkfSlamParams& params,
       line_kind_(ekf_.RegisterKind(LineBlockKind())),
       corner_kind_(ekf_.RegisterKind(kCornerKind)),
       line_model_(line_kind_, params.min_line_rho_m),
-      corner_model_(corner_sensor_, corner_kind_, 0.0) {
+      corner_model_(corner_sensor_, corner_kind_, 0.0),
+      area_(params.active_area) {
+  if (params.update == EkfUpdateMode::kCompressed && !(params.area_reach_m > 0.0)) {
+    throw std::invalid_argument("FeatureEkfSlam: compressed updates need area_reach_m > 0");
+  }
   Reset(Pose2());
 }
 
@@ -61,6 +74,7 @@ void FeatureEkfSlam::Reset(const Pose2& pose, const Eigen::Matrix3d& pose_cov) {
   ekf_.AddBlock(kPoseKind, pose.vector(), pose_cov);
   lines_.Clear();
   corners_.Clear();
+  area_.Reset();
   selection_stats_ = {};
   updates_ = 0;
 }
@@ -87,6 +101,7 @@ Eigen::Matrix2d FeatureEkfSlam::LineCovariance(int line) const {
 // together, so it ranks lines and corners on the same footing; new features are added after.
 FeatureDecisions FeatureEkfSlam::Update(const ScanFeatures& robot_frame) {
   CheckFinite(robot_frame);
+  if (params_.update == EkfUpdateMode::kCompressed) MaintainArea();
   LineSightings lines(line_associator_, line_model_, lines_, robot_frame.lines);
   CornerSightings corners(corner_model_, *corner_associator_, corners_, robot_frame.corners);
   LandmarkSightings* const kinds[] = {&lines, &corners};  // lines first: the selection's order
@@ -104,6 +119,31 @@ FeatureDecisions FeatureEkfSlam::Update(const ScanFeatures& robot_frame) {
                      "FeatureEkfSlam after update " + std::to_string(updates_));
   }
   return {pipeline.Decisions(0), pipeline.Decisions(1)};
+}
+
+// Guivant & Nebot 2001 with SPEC S1's landmarks: a line is as far as the nearest point of its
+// seen extent (an infinite line passes near every area), a corner as its estimate. Merged lines
+// take no more updates and stay out.
+void FeatureEkfSlam::MaintainArea() {
+  std::vector<int> blocks;
+  std::vector<int> line_of_block(ekf_.NumBlocks(), -1);
+  for (int i = 0; i < lines_.size(); ++i) {
+    if (!lines_.Active(i)) continue;
+    blocks.push_back(lines_.Block(i));
+    line_of_block[lines_.Block(i)] = i;
+  }
+  for (int c = 0; c < corners_.size(); ++c) blocks.push_back(corners_.Block(c));
+  // A sighting matches a line whose extent it overlaps within overlap_margin_m, and a corner
+  // within corner_reach_m: the reach covers both, so association needs the area alone.
+  const double reach_m = std::max(params_.area_reach_m + params_.lines.overlap_margin_m,
+                                  params_.corner_reach_m);
+  area_.Maintain(ekf_, kPoseBlock, blocks, reach_m,
+                 [this, &line_of_block](int b, const Eigen::Vector2d& p) {
+                   const int line = line_of_block[b];
+                   if (line < 0) return (ekf_.Mean(b) - p).squaredNorm();
+                   const LineExtent& e = lines_.Extent(line);
+                   return SegmentDistanceSq(e.start_m, e.end_m, p);
+                 });
 }
 
 void FeatureEkfSlam::CheckOutputHealth() const {
@@ -173,8 +213,12 @@ void FeatureEkfSlam::FuseMetLines(const std::vector<AssociationDecision>& lines)
       if (j == i || !lines_.Active(j)) continue;
       const LineExtent &a = lines_.Extent(i), &b = lines_.Extent(j);
       const PolarLine l = Line(i);
-      if (!NearlySameLine(l, a, Line(j), b) ||
-          SegmentOverlapM(a.start_m, a.end_m, b.start_m, b.end_m, l.alpha_rad) <= 0.0) {
+      // The tests that need no read of line j first (O(a) outside a compressed area): the
+      // overlap, and j's extent near line i (which NearlySameLine also requires).
+      const double max_rho = params_.lines.new_min_separation_rho_m;
+      if (SegmentOverlapM(a.start_m, a.end_m, b.start_m, b.end_m, l.alpha_rad) <= 0.0 ||
+          std::abs(DistanceToLine(l, b.start_m)) > max_rho ||
+          std::abs(DistanceToLine(l, b.end_m)) > max_rho || !NearlySameLine(l, a, Line(j), b)) {
         continue;
       }
       const Linearisation c = SameLine(i, j);

@@ -51,7 +51,8 @@ class CornerSightings::Context final : public AssociationContext {
     candidates_.clear();
     for (int c = 0; c < NumLandmarks(); ++c) {
       const int blocks[] = {observer_, s_.map_->Block(c)};
-      if (s_.map_->Kind(c) != s_.corners_[i].kind) continue;
+      // Outside a compressed area no corner is within reach (FeatureEkfSlam's area).
+      if (s_.map_->Kind(c) != s_.corners_[i].kind || !ekf_.IsActive(blocks[1])) continue;
       if (!s_.model_->Gate(ekf_, blocks)) continue;
       candidates_.push_back({c, Distance(i, c)});
     }

@@ -70,7 +70,9 @@ LineAssociator::Nearest LineAssociator::NearestOverlapping(const BlockEkf& ekf, 
   Nearest nearest;
   for (int k = 0; k < map.size(); ++k) {
     const int blocks[] = {pose_block, map.Block(k)};
-    if (!map.Active(k) || !model.Gate(ekf, blocks)) continue;
+    // Outside a compressed area no line overlaps a sighting (FeatureEkfSlam's area holds every
+    // line whose extent is within reach): skip the O(a) read of its mean.
+    if (!map.Active(k) || !ekf.IsActive(map.Block(k)) || !model.Gate(ekf, blocks)) continue;
     const LineExtent& extent = map.Extent(k);
     const double alpha = ekf.Mean(map.Block(k))[1];
     if (SegmentOverlapM(extent.start_m, extent.end_m, a, b, alpha) < -params_.overlap_margin_m) {

@@ -36,6 +36,13 @@ void AddLogTop(FeatureLogParams& p, ParamTable& t) {
              "update after driving this far"),
       Number("", "angular_update_rad", &p.angular_update_rad, kLogNonNeg, "rad",
              "update after turning this far"),
+      // The names follow EkfUpdateMode's order.
+      config::Choice("", "update", &p.ekf.update, {"dense", "compressed"},
+                     "compressed: updates touch the active area only (Guivant & Nebot 2001)"),
+      Number("", "area_hysteresis", &p.ekf.active_area.hysteresis_fraction, kLogPos, "",
+             "compressed: a new area when the robot is this fraction of its reach away"),
+      Number("", "area_sigma_factor", &p.ekf.active_area.sigma_factor, kLogNonNeg, "",
+             "compressed: the area widened by this many position sigmas"),
   };
   t.insert(t.end(), lines.begin(), lines.end());
 }

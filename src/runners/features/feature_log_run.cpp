@@ -90,6 +90,26 @@ void ProcessScan(const LaserScan& scan, const Pose2& delta, bool first, const Fe
   ++out->updates;
 }
 
+// How far the log's laser sees features: its largest return, within the usable range. The
+// compressed updates' area reaches that far (FeatureEkfSlamParams::area_reach_m).
+double FeatureReach(const CarmenLog& log, const LineExtractionParams& extraction) {
+  double farthest = 0.0;
+  for (const LaserScan& scan : log.scans) {
+    for (int i = 0; i < static_cast<int>(scan.ranges_m.size()); ++i) {
+      if (scan.IsReturn(i)) farthest = std::max(farthest, double(scan.ranges_m[i]));
+    }
+  }
+  return std::max(1.0, std::min(farthest, extraction.max_usable_range_m));
+}
+
+// metrics.json's filter_counters: what compressed updates cost (empty with dense ones).
+nlohmann::json CompressionJson(const CompressionStats& s, EkfUpdateMode update) {
+  if (update != EkfUpdateMode::kCompressed) return nlohmann::json::object();
+  return {{"global_updates", s.global_updates},
+          {"global_update_s", s.global_update_s},
+          {"max_active_size", s.max_active_size}};
+}
+
 }  // namespace
 
 LineExtractionParams FeatureLogParams::LogExtractionDefaults() {
@@ -114,7 +134,9 @@ FeatureLogResult RunFeatureSlamOnLog(const CarmenLog& log, const FeatureLogParam
     throw InputError("features: the log has no laser scan (no FLASER/ROBOTLASER1/RAWLASER line)");
   }
   const auto start = Clock::now();
-  FeatureEkfSlam slam(params.ekf, std::make_unique<OdometryModel>(),
+  FeatureEkfSlamParams ekf = params.ekf;
+  ekf.area_reach_m = FeatureReach(log, params.extraction);
+  FeatureEkfSlam slam(ekf, std::make_unique<OdometryModel>(),
                       MakeSelectionPolicy(params.selection, params.covariance, params.entropy));
   FeatureLogResult out;
   out.scans = static_cast<int>(log.scans.size());
@@ -136,7 +158,9 @@ FeatureLogResult RunFeatureSlamOnLog(const CarmenLog& log, const FeatureLogParam
       break;
     }
   }
+  slam.Synchronise();
   slam.CheckOutputHealth();
+  out.compression = slam.Compression();
   out.lines = MappedLines(slam);
   out.corners = MappedCorners(slam);
   out.state_size = slam.ekf().StateSize();
@@ -158,6 +182,7 @@ nlohmann::json FeatureLogMetrics(const FeatureLogResult& r, const FeatureLogPara
       {"lines", r.lines.size()},
       {"corners", r.corners.size()},
       {"state_size", r.state_size},
+      {"filter_counters", CompressionJson(r.compression, params.ekf.update)},
       {"line_sightings", CountsJson(r.lines_seen)},
       {"corner_sightings", CountsJson(r.corners_seen)},
       {"wall_time_s", r.wall_time_s},

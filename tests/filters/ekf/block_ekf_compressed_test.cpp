@@ -14,6 +14,7 @@
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/observation_model.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/features/line_landmark_model.hpp"
 #include "slamkit/models/odometry.hpp"
 #include "slamkit/models/range_bearing.hpp"
 
@@ -175,6 +176,50 @@ TEST(CompressedEkf, AnUpdateReachingOutsideTheAreaSynchronisesFirst) {
   run.Step(rng);
   EXPECT_FALSE(run.compressed().IsCompressed());
   run.ExpectEqual("after a step that left the area");
+}
+
+// A line block outside the area whose ρ a correlated update takes below zero: the dense filter
+// flips it to (−ρ, α + π) at once (its kind's normalise step), so reads of the outside block must
+// show it flipped too, its cross-covariances with their sign changed.
+TEST(CompressedEkf, AnOutsideLineReadsAsTheDenseFilterNormalisesIt) {
+  BlockEkf dense(16);
+  const int point_kind = dense.RegisterKind({2, {}, false});
+  const int line_kind = dense.RegisterKind(LineBlockKind());
+  dense.AddBlock(kPoseKind, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01, 0.01, 0.001).asDiagonal());
+  const int point = dense.AddBlock(point_kind, Eigen::Vector2d(3.0, 1.0), Eigen::Matrix2d::Identity());
+  // ρ follows the point's x one for one: ρ = 0.02 + (x − 3).
+  BlockMatrix J_line_point = BlockMatrix::Zero(2, 2);
+  J_line_point(0, 0) = 1.0;
+  const BlockJacobian from_point{point, J_line_point};
+  const int line = dense.Augment(line_kind, Eigen::Vector2d(0.02, 0.5), std::span(&from_point, 1),
+                                 BlockMatrix::Identity(2, 2), BlockMatrix::Identity(2, 2) * 1e-4);
+  BlockEkf compressed = dense;
+  const int active[] = {0, point};
+  compressed.Compress(active);
+  ASSERT_FALSE(compressed.IsActive(line));
+  // The point's x is measured 0.1 m lower than its mean, with a tiny noise.
+  Linearisation obs;
+  obs.innovation = BlockVector::Constant(1, -0.1);
+  obs.H.Add(point, BlockMatrix::Identity(1, 2));
+  obs.R = BlockMatrix::Constant(1, 1, 1e-6);
+  for (BlockEkf* f : {&dense, &compressed}) {
+    ASSERT_TRUE(f->Update(obs));
+    f->ApplyPendingDowndate();
+  }
+  ASSERT_TRUE(compressed.IsCompressed());
+  ASSERT_GT(dense.Mean(line)[0], 0.05);  // flipped: ρ ≈ 0.08, not −0.08
+  EXPECT_LT(RelativeDiff(compressed.Mean(line), dense.Mean(line)), 1e-9);
+  EXPECT_LT(RelativeDiff(compressed.CovarianceBlock(line, line), dense.CovarianceBlock(line, line)),
+            1e-9);
+  EXPECT_LT(RelativeDiff(compressed.CovarianceBlock(line, point),
+                         dense.CovarianceBlock(line, point)), 1e-9);
+  EXPECT_LT(RelativeDiff(compressed.CovarianceBlock(point, line),
+                         dense.CovarianceBlock(point, line)), 1e-9);
+  EXPECT_LT(RelativeDiff(compressed.CovarianceBlock(0, line), dense.CovarianceBlock(0, line)),
+            1e-9);
+  compressed.Synchronise();
+  EXPECT_LT(RelativeDiff(compressed.State(), dense.State()), 1e-9);
+  EXPECT_LT(RelativeDiff(compressed.Covariance(), dense.Covariance()), 1e-9);
 }
 
 }  // namespace

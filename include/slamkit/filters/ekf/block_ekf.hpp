@@ -212,6 +212,9 @@ class BlockEkf {
   // The compressed area's counterparts of the public reads and changes (area_ set).
   BlockVector CompressedMean(int block) const;
   Eigen::MatrixXd CompressedCovarianceBlock(int a, int b) const;
+  BlockMatrix OutsideMean(int block, BlockVector* mean) const;
+  BlockMatrix OutsideNormaliser(int block) const;
+  Eigen::MatrixXd OutsideCovarianceBlock(int a, int b) const;
   Eigen::MatrixXd CompressedCovariance() const;
   // S = Σ H_a P_ab H_bᵀ + R through CovarianceBlock(), for observations reaching outside the area.
   BlockMatrix GenericInnovationCovariance(const Linearisation& obs) const;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <span>
 
 #include "slamkit/filters/ekf/block_ekf.hpp"
@@ -34,13 +35,21 @@ struct CompressionStats {
   int max_active_size = 0;     // largest area's state entries
 };
 
-// Keeps a BlockEkf's active area around one pose among point landmarks.
+// The squared distance from a landmark block to a point: from a point landmark's mean, from
+// what has been seen of a line.
+using LandmarkDistanceSq = std::function<double(int block, const Eigen::Vector2d& point)>;
+
+// Keeps a BlockEkf's active area around one pose among landmarks.
 class ActiveArea {
  public:
   explicit ActiveArea(const ActiveAreaParams& params) : params_(params) {}
 
   // Before a scan: keeps the open area while the pose is within the hysteresis of its centre,
-  // else synchronises and opens a new one around the pose from `points` (their blocks).
+  // else synchronises and opens a new one around the pose from the `landmarks` blocks within
+  // its radius by `distance_sq`.
+  void Maintain(BlockEkf& ekf, int pose_block, std::span<const int> landmarks, double reach_m,
+                const LandmarkDistanceSq& distance_sq);
+  // The same among point landmarks (2-dim blocks whose mean is the position).
   void Maintain(BlockEkf& ekf, int pose_block, std::span<const int> points, double reach_m);
   // The global update (before output, or when the mode changes).
   void Synchronise(BlockEkf& ekf);

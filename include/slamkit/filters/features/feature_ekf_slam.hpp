@@ -11,6 +11,7 @@
 #include "slamkit/filters/association/data_association.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 #include "slamkit/filters/ekf/point_landmark_model.hpp"
+#include "slamkit/filters/ekf_slam/active_area.hpp"
 #include "slamkit/filters/features/feature_sightings.hpp"
 #include "slamkit/filters/features/line_association.hpp"
 #include "slamkit/filters/features/line_landmark_model.hpp"
@@ -38,6 +39,15 @@ struct FeatureEkfSlamParams {
   // the accuracy ratio of SPEC S1, Eq. 24 in LastSelectionStats() (see
   // EkfSlamParams::selection_diagnostics).
   bool selection_diagnostics = false;
+  // kCompressed: each scan's updates touch the active area only (Guivant & Nebot 2001; see
+  // EkfSlamParams::update): the lines whose seen extent and the corners whose estimate lie
+  // within the area's radius. The result equals the dense filter's after each global update.
+  EkfUpdateMode update = EkfUpdateMode::kDense;
+  ActiveAreaParams active_area;  // with kCompressed
+  // With kCompressed: how far from the robot its features are seen (the extractor's usable
+  // range), which sets the area's radius. A feature beyond it is still exact: its update brings
+  // the whole state up to date first.
+  double area_reach_m = 20.0;
 };
 
 // What Update() decided for each line and corner of the scan (landmark: the line or corner
@@ -96,6 +106,11 @@ class FeatureEkfSlam {
   Eigen::Vector2d CornerPosition(int corner) const { return ekf_.Mean(corners_.Block(corner)); }
   CornerKind CornerKindOf(int corner) const { return corners_.Kind(corner); }
   const BlockEkf& ekf() const { return ekf_; }
+  // The global update of compressed updates (nothing with dense ones): every block current, so
+  // that reads of the whole map (output) cost no more than the dense filter's.
+  void Synchronise() { area_.Synchronise(ekf_); }
+  // What compressed updates cost so far (zeros with dense ones).
+  const CompressionStats& Compression() const { return area_.stats(); }
   // What the selection policy did in the last Update().
   const SelectionStats& LastSelectionStats() const { return selection_stats_; }
   // Turns FeatureEkfSlamParams::selection_diagnostics on or off from the next Update() (a run
@@ -104,6 +119,7 @@ class FeatureEkfSlam {
 
  private:
   static constexpr int kPoseBlock = 0;
+  void MaintainArea();
   // `lines`: the decisions on the scan's lines.
   void ExtendMatchedLines(const ScanFeatures& scan, const std::vector<AssociationDecision>& lines);
   Linearisation SameLine(int i, int j) const;
@@ -124,6 +140,7 @@ class FeatureEkfSlam {
   PointLandmarkModel corner_model_;
   LineMap lines_;
   CornerMap corners_;
+  ActiveArea area_;
   SelectionStats selection_stats_;
   long updates_ = 0;  // since Reset(), to name the step a health check failed at
 };

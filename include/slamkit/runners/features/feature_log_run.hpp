@@ -75,6 +75,7 @@ struct FeatureLogResult {
   SightingCounts corners_seen;
   std::vector<double> accuracy;  // per sampled step with something to reduce
   int state_size = 0;            // at the end
+  CompressionStats compression;  // with compressed updates (ekf.update)
 };
 
 // Runs the filter over `log`'s scans from the origin; `progress(done, total)` every few scans.
