@@ -247,6 +247,51 @@ Eigen::MatrixXd BlockEkf::CompressedCovarianceBlock(int a, int b) const {
   return P;
 }
 
+std::vector<Eigen::MatrixXd> BlockEkf::DiagonalBlocks(std::span<const int> blocks) const {
+  std::vector<Eigen::MatrixXd> out(blocks.size());
+  if (!area_) {
+    for (std::size_t i = 0; i < blocks.size(); ++i) out[i] = CovarianceBlock(blocks[i], blocks[i]);
+    return out;
+  }
+  // The outside blocks' rows of C stacked, times ψ once: P_bb = P⁰_bb − C_b ψ C_bᵀ.
+  const CompressedArea& area = *area_;
+  std::vector<int> outside_rows(blocks.size(), -1);
+  int rows = 0;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (area.local_of[blocks[i]] >= 0) {
+      out[i] = area.local.CovarianceBlock(area.local_of[blocks[i]], area.local_of[blocks[i]]);
+    } else {
+      outside_rows[i] = rows;
+      rows += BlockDim(blocks[i]);
+    }
+  }
+  Eigen::MatrixXd C(rows, area.a0);
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (outside_rows[i] >= 0) {
+      C.middleRows(outside_rows[i], BlockDim(blocks[i])) = area.CrossRows(*this, blocks[i]);
+    }
+  }
+  const Eigen::MatrixXd C_psi = C * area.Psi();
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (outside_rows[i] < 0) continue;
+    const Block& b = blocks_[blocks[i]];
+    Eigen::MatrixXd P(b.dim, b.dim);
+    for (int r = 0; r < b.dim; ++r) {
+      for (int c = 0; c < b.dim; ++c) {
+        const int p = b.offset + r, q = b.offset + c;
+        P(r, c) = (p <= q ? P_(p, q) : P_(q, p)) -
+                  C_psi.row(outside_rows[i] + r).dot(C.row(outside_rows[i] + c));
+      }
+    }
+    if (kinds_[b.kind].normalise) {
+      const BlockMatrix J = OutsideNormaliser(blocks[i]);
+      P = J * P * J.transpose();
+    }
+    out[i] = P;
+  }
+  return out;
+}
+
 // Covariance block (a, b) of two blocks outside the area, before their normalise steps.
 Eigen::MatrixXd BlockEkf::OutsideCovarianceBlock(int a, int b) const {
   const CompressedArea& area = *area_;

@@ -155,6 +155,17 @@ TEST(CompressedEkf, ReadsWhileAnAreaIsOpenAreTheDenseFiltersReads) {
     EXPECT_LT(RelativeDiff(c.CovarianceBlock(b, 1), run.dense().CovarianceBlock(b, 1)), 1e-9);
   }
   EXPECT_GT(inactive, 10);
+  // The batched read of the diagonal blocks, inside and outside the area, is the same.
+  std::vector<int> mapped;
+  for (const int b : run.blocks()) {
+    if (b >= 0) mapped.push_back(b);
+  }
+  const std::vector<Eigen::MatrixXd> diagonal = c.DiagonalBlocks(mapped);
+  ASSERT_EQ(diagonal.size(), mapped.size());
+  for (std::size_t i = 0; i < mapped.size(); ++i) {
+    EXPECT_LT(RelativeDiff(diagonal[i], run.dense().CovarianceBlock(mapped[i], mapped[i])), 1e-9)
+        << "block " << mapped[i];
+  }
   EXPECT_TRUE(c.IsCompressed());  // reads do not close the area
   run.ExpectEqual("through an open area");
   EXPECT_FALSE(c.HealthProblem({}, true).has_value());
@@ -217,6 +228,10 @@ TEST(CompressedEkf, AnOutsideLineReadsAsTheDenseFilterNormalisesIt) {
                          dense.CovarianceBlock(point, line)), 1e-9);
   EXPECT_LT(RelativeDiff(compressed.CovarianceBlock(0, line), dense.CovarianceBlock(0, line)),
             1e-9);
+  const int both[] = {line, point};
+  const std::vector<Eigen::MatrixXd> diagonal = compressed.DiagonalBlocks(both);
+  EXPECT_LT(RelativeDiff(diagonal[0], dense.CovarianceBlock(line, line)), 1e-9);
+  EXPECT_LT(RelativeDiff(diagonal[1], dense.CovarianceBlock(point, point)), 1e-9);
   compressed.Synchronise();
   EXPECT_LT(RelativeDiff(compressed.State(), dense.State()), 1e-9);
   EXPECT_LT(RelativeDiff(compressed.Covariance(), dense.Covariance()), 1e-9);

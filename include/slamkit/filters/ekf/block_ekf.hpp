@@ -185,6 +185,9 @@ class BlockEkf {
   }
   // Covariance block (a, b) of the current posterior (through any pending downdate).
   Eigen::MatrixXd CovarianceBlock(int a, int b) const;
+  // CovarianceBlock(b, b) of each of `blocks`, in one pass: while an area is open, the blocks
+  // outside it cost O(k·a₀²) together (one product with ψ) instead of O(a₀²) each.
+  std::vector<Eigen::MatrixXd> DiagonalBlocks(std::span<const int> blocks) const;
   // The full symmetric covariance and the mean (copies; O(n²), for tests and output).
   Eigen::MatrixXd Covariance() const;
   // A filter of `blocks` alone (in that order: block i of the result is blocks[i]), with the
