@@ -70,6 +70,14 @@ double SegmentOverlapM(const Eigen::Vector2d& a1, const Eigen::Vector2d& b1,
   return hi - lo;
 }
 
+double PointSegmentDistanceSq(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                              const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double length_sq = ab.squaredNorm();
+  const double t = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).squaredNorm();
+}
+
 bool SegmentsOverlap(const Eigen::Vector2d& a1, const Eigen::Vector2d& b1,
                      const Eigen::Vector2d& a2, const Eigen::Vector2d& b2, double alpha_rad,
                      double min_overlap_m) {

@@ -114,6 +114,14 @@ TEST(LineSensor, MahalanobisWrapsTheAngle) {
   EXPECT_NEAR(nu[1], -0.02, 1e-12);
 }
 
+TEST(PointSegmentDistance, PerpendicularInsideAndToTheNearerEndOutside) {
+  const Eigen::Vector2d a(0, 1), b(4, 1);
+  EXPECT_NEAR(PointSegmentDistanceSq({2, 3}, a, b), 4.0, 1e-12);   // foot inside: 2 m across
+  EXPECT_NEAR(PointSegmentDistanceSq({7, 5}, a, b), 25.0, 1e-12);  // beyond b: 3-4-5 to b
+  EXPECT_NEAR(PointSegmentDistanceSq({-1, 1}, b, a), 1.0, 1e-12);  // before a, either order
+  EXPECT_NEAR(PointSegmentDistanceSq({3, 5}, a, a), 25.0, 1e-12);  // a point segment
+}
+
 TEST(SegmentOverlap, CollinearWallsFarApartDoNotOverlap) {
   const double alpha = std::numbers::pi / 2.0;  // both on the line y = 1
   const Eigen::Vector2d a1(0, 1), b1(3, 1);

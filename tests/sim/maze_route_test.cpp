@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "slamkit/models/line_sensor.hpp"
 #include "slamkit/sim/laser_sim.hpp"
 
 namespace slamkit {
@@ -15,10 +16,7 @@ namespace {
 
 double PointToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
                       const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
+  return std::sqrt(PointSegmentDistanceSq(p, a, b));
 }
 
 double Cross(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {

@@ -46,6 +46,10 @@ double LineMahalanobis2(const PolarLine& z, const PolarLine& z_pred, const Eigen
 double SegmentOverlapM(const Eigen::Vector2d& a1, const Eigen::Vector2d& b1,
                        const Eigen::Vector2d& a2, const Eigen::Vector2d& b2, double alpha_rad);
 
+// The squared distance [m²] from point `p` to the closed segment [a, b] (a point when a = b).
+double PointSegmentDistanceSq(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                              const Eigen::Vector2d& b);
+
 // Whether the two segments overlap by at least `min_overlap_m` along the line (a negative value
 // accepts segments with a gap of up to −min_overlap_m between them).
 bool SegmentsOverlap(const Eigen::Vector2d& a1, const Eigen::Vector2d& b1,

@@ -34,15 +34,6 @@ void CheckFinite(const ScanFeatures& scan) {
   }
 }
 
-// The squared distance from `p` to the segment [a, b].
-double SegmentDistanceSq(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                         const Eigen::Vector2d& p) {
-  const Eigen::Vector2d ab = b - a;
-  const double length_sq = ab.squaredNorm();
-  const double t = length_sq > 0.0 ? std::clamp((p - a).dot(ab) / length_sq, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).squaredNorm();
-}
-
 }  // namespace
 
 FeatureEkfSlam::FeatureEkfSlam(const FeatureEkfSlamParams& params,
@@ -142,7 +133,7 @@ void FeatureEkfSlam::MaintainArea() {
                    const int line = line_of_block[b];
                    if (line < 0) return (ekf_.Mean(b) - p).squaredNorm();
                    const LineExtent& e = lines_.Extent(line);
-                   return SegmentDistanceSq(e.start_m, e.end_m, p);
+                   return PointSegmentDistanceSq(p, e.start_m, e.end_m);
                  });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -12,6 +13,7 @@
 
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/grid_writers.hpp"
+#include "slamkit/models/line_sensor.hpp"
 #include "slamkit/models/motion_model.hpp"
 #include "slamkit/sim/floor_plan_grid.hpp"
 
@@ -21,10 +23,7 @@ namespace {
 double DistanceToWalls(const FloorPlan& plan, const Eigen::Vector2d& p) {
   double best = std::numeric_limits<double>::infinity();
   for (const WallSegment& w : plan.walls) {
-    const Eigen::Vector2d d = w.second - w.first;
-    const double n = d.squaredNorm();
-    const double t = n > 0.0 ? std::clamp((p - w.first).dot(d) / n, 0.0, 1.0) : 0.0;
-    best = std::min(best, (w.first + t * d - p).norm());
+    best = std::min(best, std::sqrt(PointSegmentDistanceSq(p, w.first, w.second)));
   }
   return best;
 }
