@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "common/landmark_inputs.hpp"
+#include "circle_drive.hpp"
 #include "slamkit/core/rng.hpp"
 #include "slamkit/filters/ekf_slam/ekf_slam.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"
@@ -20,51 +21,9 @@ namespace {
 
 using testing::Odo;
 using testing::RangeBearingObs;
-
-// A drive once around a circle of radius 20 m past trees on two rings (radius 12 and 28 m, 24 m
-// or more apart along them), sighted within 14 m; odometry and sightings with noise, ids withheld.
-struct Drive {
-  std::vector<Control> controls;
-  std::vector<std::vector<PointObservation>> scans;  // one per pose, the first before any move
-  std::vector<Eigen::Vector2d> trees;
-};
-
-Drive MakeDrive(int steps, std::uint64_t seed) {
-  Rng rng(seed);
-  Drive d;
-  for (int i = 0; i < 16; ++i) {
-    const double a = 2.0 * std::numbers::pi * (i + 0.5 * (i % 2)) / 16.0;
-    const double r = i % 2 == 0 ? 12.0 : 28.0;
-    d.trees.emplace_back(r * std::sin(a), 20.0 - r * std::cos(a));
-  }
-  const double turn = 2.0 * std::numbers::pi / steps;
-  const Control step = Odo(2.0 * 20.0 * std::sin(0.5 * turn), 0.0, turn);
-  Pose2 truth;
-  for (int k = 0; k <= steps; ++k) {
-    std::vector<PointObservation> scan;
-    for (const Eigen::Vector2d& tree : d.trees) {
-      const RangeBearing rb = PredictRangeBearing(truth, tree);
-      if (rb.range_m > 14.0) continue;
-      const Eigen::Vector2d e = testing::NormalVector2(rng, 0.05, 0.01);
-      scan.push_back(RangeBearingObs(rb.range_m + e.x(), WrapAngle(rb.bearing_rad + e.y())));
-    }
-    d.scans.push_back(scan);
-    if (k == steps) break;
-    truth = OdometryModel().Move(truth, step, 0.0);
-    // Within the odometry model's default noise (4 cm, 0.01° a step).
-    const Eigen::Vector3d e = testing::NormalVector3(rng, 0.03, 0.03, 1.5e-4);
-    d.controls.push_back(Odo(step[0] + e.x(), e.y(), step[2] + e.z()));
-  }
-  return d;
-}
-
-FastSlamParams Delayed(int particles) {
-  FastSlamParams p;
-  p.particles = particles;
-  p.delayed_sampling = true;
-  p.new_landmark_test = NewLandmarkTest::kMahalanobis;
-  return p;
-}
+using testing::Delayed;
+using testing::Drive;
+using testing::MakeDrive;
 
 // Through ground it has never seen, a particle with delayed sampling never draws: its pose and
 // every tree it maps are one Gaussian, so a single particle is EKF-SLAM, step for step.
@@ -134,37 +93,6 @@ TEST(FastSlamDelayedSampling, OnMappedGroundItIsFastSlam2) {
   EXPECT_EQ(runs[1]->NumLandmarks(), static_cast<int>(d.trees.size()));
 }
 
-int LandmarksMapped(LandmarkSlamFilter& slam, const Drive& d) {
-  for (std::size_t k = 0; k < d.scans.size(); ++k) {
-    if (k > 0) slam.Predict(d.controls[k - 1], 0.1);
-    slam.Update(d.scans[k]);
-  }
-  return slam.NumLandmarks();
-}
-
-// Twenty particles that draw whenever they match a landmark of their tree close the loop as the
-// EKF does, tree for tree, on every drive of eight (landmarks drawn from a window are filed and
-// found again); FastSLAM 2.0 with as many particles duplicates more trees.
-TEST(FastSlamDelayedSampling, ClosesTheLoopAsTheEkfDoes) {
-  int standard_excess = 0, delayed_excess = 0;
-  for (std::uint64_t seed = 3; seed < 11; ++seed) {
-    const Drive d = MakeDrive(90, seed);
-    EkfSlam ekf(EkfSlamParams{}, std::make_unique<OdometryModel>(),
-                std::make_unique<RangeBearingModel>());
-    FastSlam delayed(Delayed(20), std::make_unique<OdometryModel>(),
-                     std::make_unique<RangeBearingModel>());
-    FastSlamParams p = Delayed(20);
-    p.delayed_sampling = false;
-    FastSlam standard(p, std::make_unique<OdometryModel>(), std::make_unique<RangeBearingModel>());
-    const int trees = static_cast<int>(d.trees.size());
-    const int by_ekf = LandmarksMapped(ekf, d);
-    const int by_delayed = LandmarksMapped(delayed, d);
-    EXPECT_EQ(by_delayed, by_ekf) << "drive " << seed;
-    delayed_excess += by_delayed - trees;
-    standard_excess += LandmarksMapped(standard, d) - trees;
-  }
-  EXPECT_LT(delayed_excess, standard_excess);
-}
 
 TEST(FastSlamDelayedSampling, NeedsEachParticlesOwnAssociation) {
   FastSlamParams params = Delayed(5);
