@@ -155,6 +155,9 @@ function(slamkit_test)
     add_dependencies(${name} slamkit)
   endif()
   slamkit_target_options(${name})
+  # Test files share helper names in their anonymous namespaces across a program; batches of 16
+  # keep those apart whatever SLAMKIT_UNITY_BATCH_SIZE the libraries use.
+  set_target_properties(${name} PROPERTIES UNITY_BUILD_BATCH_SIZE 16)
   if(SLAMKIT_SANITIZE)
     # Test code at -O0 in the sanitizer build (the library stays at -O1, where the tests spend
     # their time): it compiles in about two thirds of the time.

@@ -43,12 +43,15 @@ case "$flavour" in
   # report at a fraction of full debug information's compile and link time. clang, because
   # libFuzzer is part of clang: one sanitizer build serves the tests and the harnesses (a
   # separate fuzz build compiled every library a third time). Not -march=native:
-  # SLAMKIT_SANITIZE turns SLAMKIT_NATIVE's default off (CMakeLists.txt).
+  # SLAMKIT_SANITIZE turns SLAMKIT_NATIVE's default off (CMakeLists.txt). The libraries in unity
+  # batches of 64 files rather than 16: they took 16 % less CPU (250 s against 296 s of user
+  # time up to slamkit_runners, no ccache), and compiling is most of the test command's time
+  # from a fresh clone.
   asan)
     env_args=(CC=clang CXX=clang++)
     args=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DSLAMKIT_BUILD_FUZZ=ON
           -DSLAMKIT_BUILD_BENCH=OFF -DSLAMKIT_BUILD_SLOW_TESTS=OFF -DSLAMKIT_BUILD_APPS=OFF
-          -DSLAMKIT_TEST_PER_PROGRAM=ON) ;;
+          -DSLAMKIT_TEST_PER_PROGRAM=ON -DSLAMKIT_UNITY_BATCH_SIZE=64) ;;
   *) echo "setup: unknown build '$flavour' (release|asan)" >&2; exit 2 ;;
 esac
 build=build/$flavour
