@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "slamkit/io/error.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit {
 namespace {

@@ -20,7 +20,7 @@
 
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/error.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit {
 // Named, so that the helpers' names stay apart from the other readers' in a unity batch.

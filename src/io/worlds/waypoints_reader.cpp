@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "slamkit/io/error.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit {
 

@@ -12,7 +12,7 @@
 #include "slamkit/core/laser_scan.hpp"
 #include "slamkit/core/pose2.hpp"
 #include "slamkit/core/trajectory.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit::carmen {
 

@@ -5,7 +5,7 @@
 
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit {
 namespace {

@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 
 #include "slamkit/io/error.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
-#include "text_records.hpp"
+#include "../text/text_records.hpp"
 
 namespace slamkit {
 namespace {
