@@ -8,10 +8,10 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "grid_outputs.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
+#include "common/commands.hpp"
+#include "grid/grid_outputs.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/filters/fastslam/fastslam.hpp"

@@ -7,16 +7,16 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/runners/landmark/active_outputs.hpp"
 #include "slamkit/runners/landmark/scenario_config.hpp"
 #include "slamkit/runners/landmark/study.hpp"
 #include "slamkit/runners/landmark/study_outputs.hpp"
-#include "study_figures.hpp"
+#include "landmark/study_figures.hpp"
 
 namespace slamkit::app {
 namespace {

@@ -7,12 +7,12 @@
 #include <memory>
 #include <string>
 
-#include "commands.hpp"
-#include "feature_outputs.hpp"
-#include "log_input.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "features/feature_outputs.hpp"
+#include "common/log_input.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/io/writers.hpp"
 #include "slamkit/runners/features/feature_log_config.hpp"
 #include "slamkit/runners/features/feature_log_run.hpp"

@@ -7,11 +7,11 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "options.hpp"
-#include "mc_figures.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "common/options.hpp"
+#include "landmark/mc_figures.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/report/figures.hpp"

@@ -1,4 +1,4 @@
-#include "study_figures.hpp"
+#include "landmark/study_figures.hpp"
 
 #include <algorithm>
 #include <string>

@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "options.hpp"
+#include "common/commands.hpp"
+#include "common/options.hpp"
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/json_reader.hpp"

@@ -1,5 +1,5 @@
 // The figures of `slamkit coop`.
-#include "coop_figures.hpp"
+#include "cooperative/coop_figures.hpp"
 
 #include <fmt/format.h>
 

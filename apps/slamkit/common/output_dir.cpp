@@ -1,4 +1,4 @@
-#include "output_dir.hpp"
+#include "common/output_dir.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>

@@ -23,11 +23,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "suite_sheet.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "grid/suite_sheet.hpp"
+#include "common/progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/map_reader.hpp"

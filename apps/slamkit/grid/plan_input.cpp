@@ -1,4 +1,4 @@
-#include "plan_input.hpp"
+#include "grid/plan_input.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -7,11 +7,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "mc_figures.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "suite_sheet.hpp"
+#include "common/commands.hpp"
+#include "landmark/mc_figures.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "grid/suite_sheet.hpp"
 #include "slamkit/core/angle.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/json_reader.hpp"

@@ -9,11 +9,11 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "log_input.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "common/log_input.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/map_reader.hpp"
 #include "slamkit/io/writers.hpp"

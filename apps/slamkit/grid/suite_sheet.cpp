@@ -1,4 +1,4 @@
-#include "suite_sheet.hpp"
+#include "grid/suite_sheet.hpp"
 
 #include <exception>
 

@@ -1,4 +1,4 @@
-#include "mc_figures.hpp"
+#include "landmark/mc_figures.hpp"
 
 #include <fmt/format.h>
 

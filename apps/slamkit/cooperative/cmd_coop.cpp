@@ -8,11 +8,11 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "coop_figures.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "cooperative/coop_figures.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/mrclam_reader.hpp"
 #include "slamkit/runners/cooperative/coop_config.hpp"

@@ -1,4 +1,4 @@
-#include "feature_outputs.hpp"
+#include "features/feature_outputs.hpp"
 
 #include <fmt/format.h>
 

@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "commands.hpp"
-#include "options.hpp"
+#include "common/commands.hpp"
+#include "common/options.hpp"
 #include "slamkit/eval/map_alignment.hpp"
 #include "slamkit/eval/map_comparison.hpp"
 #include "slamkit/io/error.hpp"

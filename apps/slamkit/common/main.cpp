@@ -11,8 +11,8 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "common/progress.hpp"
 #include "slamkit/core/numerical_error.hpp"
 #include "slamkit/io/error.hpp"
 

@@ -11,12 +11,12 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "grid_outputs.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "plan_input.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "grid/grid_outputs.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "grid/plan_input.hpp"
+#include "common/progress.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/waypoints_reader.hpp"
 #include "slamkit/io/writers.hpp"

@@ -11,12 +11,12 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
-#include "commands.hpp"
-#include "grid_outputs.hpp"
-#include "log_input.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "grid/grid_outputs.hpp"
+#include "common/log_input.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/core/cpu.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/writers.hpp"

@@ -1,4 +1,4 @@
-#include "explore_figures.hpp"
+#include "features/explore_figures.hpp"
 
 #include <fmt/format.h>
 

@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "explore_figures.hpp"
-#include "feature_outputs.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
-#include "progress.hpp"
+#include "common/commands.hpp"
+#include "features/explore_figures.hpp"
+#include "features/feature_outputs.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
+#include "common/progress.hpp"
 #include "slamkit/io/atomic_file.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/floor_plan_reader.hpp"

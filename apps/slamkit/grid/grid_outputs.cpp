@@ -1,4 +1,4 @@
-#include "grid_outputs.hpp"
+#include "grid/grid_outputs.hpp"
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "options.hpp"
+#include "common/options.hpp"
 #include "slamkit/io/grid_writers.hpp"
 #include "slamkit/io/pose_graph_io.hpp"
 #include "slamkit/io/writers.hpp"

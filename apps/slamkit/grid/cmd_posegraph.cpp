@@ -5,9 +5,9 @@
 
 #include <fmt/format.h>
 
-#include "commands.hpp"
-#include "options.hpp"
-#include "output_dir.hpp"
+#include "common/commands.hpp"
+#include "common/options.hpp"
+#include "common/output_dir.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/pose_graph_io.hpp"
 #include "slamkit/io/writers.hpp"

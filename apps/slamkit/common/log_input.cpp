@@ -1,13 +1,13 @@
-#include "log_input.hpp"
+#include "common/log_input.hpp"
 
 #include <fmt/format.h>
 
 #include <exception>
 #include <map>
 
-#include "grid_outputs.hpp"
-#include "options.hpp"
-#include "progress.hpp"
+#include "grid/grid_outputs.hpp"
+#include "common/options.hpp"
+#include "common/progress.hpp"
 #include "slamkit/io/error.hpp"
 #include "slamkit/io/relations_reader.hpp"
 #include "slamkit/io/trajectory_reader.hpp"
