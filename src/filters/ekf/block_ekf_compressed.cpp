@@ -2,17 +2,13 @@
 // and Map-Building Algorithm for Real-Time Implementation", IEEE T-RA 17(3), 2001, Sec. III):
 // opening an area and the global update (reads through an open area: block_ekf_area_reads.cpp).
 
-
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <stdexcept>
 
-#include "slamkit/core/angle.hpp"
 #include "compressed_area.hpp"
 #include "slamkit/filters/ekf/block_ekf.hpp"
 
 namespace slamkit {
-
 
 BlockEkf::BlockEkf(const BlockEkf& other)
     : kinds_(other.kinds_),
