@@ -52,4 +52,8 @@ inline std::filesystem::path FreshDir(const std::string& name) {
   return dir;
 }
 
+// The short simulated scenario the command-line tests run (configs/short.yaml).
+inline const std::string kShortScenario =
+    std::string(SLAMKIT_SOURCE_DIR) + "/configs/short.yaml";
+
 }  // namespace slamkit::testing

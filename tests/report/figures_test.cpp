@@ -21,110 +21,21 @@
 
 #include "slamkit/core/rng.hpp"
 
-#include "common/temp_dir.hpp"
 #include "common/ordered_draws.hpp"
+#include "common/temp_dir.hpp"
+#include "png_pixels.hpp"
 
 namespace slamkit {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct PngSize {
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
-};
-
-std::uint32_t BigEndian32(const unsigned char* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
-         std::uint32_t{p[3]};
-}
-
-// The image size from the IHDR chunk, which the PNG standard requires to come first.
-PngSize ReadPngSize(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::array<unsigned char, 24> head{};
-  in.read(reinterpret_cast<char*>(head.data()), head.size());
-  EXPECT_EQ(in.gcount(), 24) << path;
-  const std::array<unsigned char, 8> signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  EXPECT_TRUE(std::equal(signature.begin(), signature.end(), head.begin())) << path;
-  EXPECT_EQ(std::string(head.begin() + 12, head.begin() + 16), "IHDR") << path;
-  return {BigEndian32(&head[16]), BigEndian32(&head[20])};
-}
-
-std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// A decoded image, 8-bit RGBA, rows from the top.
-struct RgbaImage {
-  int width = 0;
-  int height = 0;
-  std::vector<std::uint8_t> rgba;
-  std::uint32_t At(int x, int y) const {
-    const std::uint8_t* p = &rgba[4 * (static_cast<std::size_t>(y) * width + x)];
-    return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
-           std::uint32_t{p[3]};
-  }
-};
-
-RgbaImage ReadPng(const fs::path& path) {
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&png, path.c_str())) {
-    ADD_FAILURE() << path << ": " << png.message;
-    return {};
-  }
-  png.format = PNG_FORMAT_RGBA;
-  RgbaImage image;
-  image.width = static_cast<int>(png.width);
-  image.height = static_cast<int>(png.height);
-  image.rgba.resize(PNG_IMAGE_SIZE(png));
-  if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr)) {
-    ADD_FAILURE() << path << ": " << png.message;
-    png_image_free(&png);
-    return {};
-  }
-  return image;
-}
-
-void WritePng(const fs::path& path, const RgbaImage& image) {
-  png_image png{};
-  png.version = PNG_IMAGE_VERSION;
-  png.width = static_cast<png_uint_32>(image.width);
-  png.height = static_cast<png_uint_32>(image.height);
-  png.format = PNG_FORMAT_RGBA;
-  ASSERT_TRUE(png_image_write_to_file(&png, path.c_str(), 0, image.rgba.data(), 0, nullptr))
-      << png.message;
-}
-
-RgbaImage Filled(int width, int height, std::array<std::uint8_t, 4> colour) {
-  RgbaImage image{width, height, {}};
-  for (int i = 0; i < width * height; ++i) {
-    image.rgba.insert(image.rgba.end(), colour.begin(), colour.end());
-  }
-  return image;
-}
-
-// Why `image` is not a drawn figure, or "" if it looks like one: a figure has several distinct
-// colours (lines, markers, text, anti-aliasing) and at least 1 % of its pixels differ from the
-// background (its most common colour).
-std::string NotADrawnFigure(const RgbaImage& image) {
-  if (image.width == 0 || image.height == 0) return "no pixels";
-  std::map<std::uint32_t, int> count;
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) ++count[image.At(x, y)];
-  }
-  if (count.size() < 8) return std::to_string(count.size()) + " distinct colours";
-  int background = 0;
-  for (const auto& [colour, n] : count) background = std::max(background, n);
-  const int total = image.width * image.height;
-  if (total - background < total / 100) {
-    return std::to_string(total - background) + " of " + std::to_string(total) +
-           " pixels drawn";
-  }
-  return "";
-}
+using testing::Filled;
+using testing::NotADrawnFigure;
+using testing::PngSize;
+using testing::ReadPngSize;
+using testing::ReadText;
+using testing::RgbaImage;
 
 // Strongly blue, red, green or near-black pixels: the pens "b", "r", "g" and "k" of the figures.
 bool IsBlue(const std::uint8_t* p) { return p[2] > 180 && p[0] < 90 && p[1] < 90; }
@@ -206,13 +117,13 @@ TEST_F(Figures, PathFigureWritesPngOfRequestedSizeAndSvg) {
 }
 
 TEST_F(Figures, DrawnFigureCheckRejectsBlankAndSingleColourImages) {
-  WritePng(dir_ / "white.png", Filled(640, 480, {255, 255, 255, 255}));
-  WritePng(dir_ / "grey.png", Filled(640, 480, {90, 90, 90, 255}));
+  testing::WriteRgbaPng(dir_ / "white.png", Filled(640, 480, {255, 255, 255, 255}));
+  testing::WriteRgbaPng(dir_ / "grey.png", Filled(640, 480, {90, 90, 90, 255}));
   RgbaImage dot = Filled(640, 480, {255, 255, 255, 255});
   for (int i = 0; i < 12; ++i) dot.rgba[4 * (i * 641)] = static_cast<std::uint8_t>(20 * i);
-  WritePng(dir_ / "dots.png", dot);
+  testing::WriteRgbaPng(dir_ / "dots.png", dot);
   for (const char* name : {"white.png", "grey.png", "dots.png"}) {
-    const RgbaImage image = ReadPng(dir_ / name);
+    const RgbaImage image = testing::ReadRgbaPng(dir_ / name);
     EXPECT_EQ(image.width, 640);
     EXPECT_NE(NotADrawnFigure(image), "") << name;
     EXPECT_EQ(PerThird(image, IsBlue), (std::array<int, 3>{0, 0, 0})) << name;
@@ -221,7 +132,7 @@ TEST_F(Figures, DrawnFigureCheckRejectsBlankAndSingleColourImages) {
 
 TEST_F(Figures, PathFigureDrawsEveryLayerInItsColour) {
   WritePathFigure(dir_ / "map.png", SamplePathData(40));
-  const RgbaImage image = ReadPng(dir_ / "map.png");
+  const RgbaImage image = testing::ReadRgbaPng(dir_ / "map.png");
   ASSERT_EQ(image.width, 640);
   ASSERT_EQ(image.height, 480);
   EXPECT_EQ(NotADrawnFigure(image), "");
@@ -254,8 +165,8 @@ TEST_F(Figures, PathFigureMarksTheGivenPoints) {
     }
     return n;
   };
-  EXPECT_EQ(magenta(ReadPng(dir_ / "plain.png")), 0);
-  EXPECT_GT(magenta(ReadPng(dir_ / "marked.png")), 4 * 30);  // three discs and the legend's
+  EXPECT_EQ(magenta(testing::ReadRgbaPng(dir_ / "plain.png")), 0);
+  EXPECT_GT(magenta(testing::ReadRgbaPng(dir_ / "marked.png")), 4 * 30);  // three discs and the legend's
 }
 
 // The data are drawn where they belong: each series lands in its own panel's third of the image,
@@ -263,7 +174,7 @@ TEST_F(Figures, PathFigureMarksTheGivenPoints) {
 TEST_F(Figures, ConsistencyFigureDrawsEachSeriesInItsPanel) {
   const ConsistencyFigureData data = SampleConsistencyData();
   WriteConsistencyFigure(dir_ / "all.png", data);
-  const RgbaImage all = ReadPng(dir_ / "all.png");
+  const RgbaImage all = testing::ReadRgbaPng(dir_ / "all.png");
   EXPECT_EQ(NotADrawnFigure(all), "");
   const std::array<int, 3> blue = PerThird(all, IsBlue);
   for (int panel = 0; panel < 3; ++panel) EXPECT_GT(blue[panel], 200) << "panel " << panel;
@@ -276,7 +187,7 @@ TEST_F(Figures, ConsistencyFigureDrawsEachSeriesInItsPanel) {
   position_only.heading_rmse_rad.clear();
   position_only.band_lo = position_only.band_hi = 0.0;
   WriteConsistencyFigure(dir_ / "position.png", position_only);
-  const RgbaImage position = ReadPng(dir_ / "position.png");
+  const RgbaImage position = testing::ReadRgbaPng(dir_ / "position.png");
   EXPECT_EQ(NotADrawnFigure(position), "");
   const std::array<int, 3> only = PerThird(position, IsBlue);
   EXPECT_EQ(only[0], 0);
