@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include <png.h>
+
 namespace slamkit::internal {
 namespace {
 
@@ -42,16 +44,33 @@ ImageFormat CheckedFormat(const fs::path& path, int width_px, int height_px) {
 
 void SuppressMglWarnings() { mglGraph::SuppressWarn(true); }
 
+// The canvas's pixels encoded by libpng for speed (PNG_IMAGE_FLAG_FAST): the same image as
+// MathGL's own PNG writer, which compresses harder and took a third of a map figure's time.
+bool WriteFastPng(mglGraph& gr, const fs::path& path) {
+  const unsigned char* rgb = gr.GetRGB();
+  if (rgb == nullptr) return false;
+  png_image png{};
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(gr.GetWidth());
+  png.height = static_cast<png_uint_32>(gr.GetHeight());
+  png.format = PNG_FORMAT_RGB;
+  png.flags = PNG_IMAGE_FLAG_FAST;
+  const bool ok = png_image_write_to_file(&png, path.c_str(), 0, rgb, 0, nullptr) != 0;
+  png_image_free(&png);
+  return ok;
+}
+
 void WriteAtomically(mglGraph& gr, const fs::path& path, ImageFormat format) {
   const fs::path tmp = TemporaryPathBeside(path);
   gr.SetWarn(mglWarnNone, "");
+  bool encoded = true;
   if (format == ImageFormat::kPng) {
-    gr.WritePNG(tmp.c_str(), "", false);
+    encoded = WriteFastPng(gr, tmp);
   } else {
     gr.WriteSVG(tmp.c_str());
   }
   std::error_code ec;
-  const bool written = gr.GetWarn() != mglWarnOpen && fs::is_regular_file(tmp, ec) &&
+  const bool written = encoded && gr.GetWarn() != mglWarnOpen && fs::is_regular_file(tmp, ec) &&
                        fs::file_size(tmp, ec) > 0 && !ec;
   if (written) fs::rename(tmp, path, ec);
   if (!written || ec) {

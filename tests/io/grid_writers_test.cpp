@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -62,6 +63,36 @@ TEST_F(GridWriters, PgmHasTheHeaderAndThePixelsTopRowFirst) {
   int unknown = 0;
   for (std::size_t i = header.size(); i < pgm.size(); ++i) unknown += pgm[i] == char(205);
   EXPECT_EQ(unknown, 7 * 8 - 2);
+}
+
+// Across tiles, on both sides of the origin, with cells written back to exactly 0 log-odds: every
+// pixel is what the cell's own probability says (the image is built a tile row at a time).
+TEST_F(GridWriters, EveryPixelClassifiesItsCellAcrossTiles) {
+  OccupancyGrid grid({.resolution_m = 0.05});
+  std::mt19937 random(5);
+  std::uniform_int_distribution<int> coordinate(-150, 149), steps(-127, 127);
+  for (int i = 0; i < 20000; ++i) {
+    const CellIndex c{coordinate(random), coordinate(random)};
+    grid.Update(c, steps(random) / 32.0f);
+    if (i % 7 == 0) grid.Update(c, -grid.LogOdds(c));  // known once, unknown again
+  }
+  const GridImageParams params{.occupied_threshold = 0.6, .free_threshold = 0.3, .margin_cells = 3};
+  const OccupancyImage image = RenderOccupancyImage(grid, params);
+  const CellIndex lo{grid.min_cell().x - 3, grid.min_cell().y - 3};
+  ASSERT_EQ(image.width, grid.max_cell().x - lo.x + 4);
+  ASSERT_EQ(image.height, grid.max_cell().y - lo.y + 4);
+  for (int row = 0; row < image.height; ++row) {
+    for (int col = 0; col < image.width; ++col) {
+      const CellIndex c{lo.x + col, lo.y + image.height - 1 - row};
+      const double p = grid.Probability(c);
+      const int want = !grid.IsKnown(c)                  ? 205
+                       : p >= params.occupied_threshold ? 0
+                       : p <= params.free_threshold     ? 254
+                                                        : 205;
+      ASSERT_EQ(image.pixels[static_cast<std::size_t>(row) * image.width + col], want)
+          << "cell (" << c.x << ", " << c.y << ")";
+    }
+  }
 }
 
 TEST_F(GridWriters, YamlHasTheMapServerFields) {

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <png.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -19,12 +21,36 @@ constexpr std::uint8_t kOccupiedPixel = 0;
 constexpr std::uint8_t kFreePixel = 254;
 constexpr std::uint8_t kUnknownPixel = 205;
 
-std::uint8_t PixelOf(const OccupancyGrid& grid, const CellIndex& c, const GridImageParams& params) {
-  if (!grid.IsKnown(c)) return kUnknownPixel;  // never written, or back to exactly 0 log-odds
-  const double p = grid.Probability(c);
-  if (p >= params.occupied_threshold) return kOccupiedPixel;
-  if (p <= params.free_threshold) return kFreePixel;
-  return kUnknownPixel;
+// The pixel of each stored cell value (OccupancyGrid::LogOddsSteps): a cell never written, or
+// back to exactly 0 log-odds, is unknown; the others are classified by their probability.
+std::array<std::uint8_t, 256> PixelTable(const GridImageParams& params) {
+  std::array<std::uint8_t, 256> table{};
+  for (int v = -128; v < 128; ++v) {
+    const auto steps = static_cast<OccupancyGrid::CellValue>(v);
+    const double p = OccupancyGrid::StepsProbability(steps);
+    table[static_cast<std::uint8_t>(steps)] = steps == 0                       ? kUnknownPixel
+                                              : p >= params.occupied_threshold ? kOccupiedPixel
+                                              : p <= params.free_threshold     ? kFreePixel
+                                                                               : kUnknownPixel;
+  }
+  return table;
+}
+
+// Cells lo_x..hi_x of row y as pixels, one tile lookup per tile the row crosses.
+void RenderRow(const OccupancyGrid& grid, const std::array<std::uint8_t, 256>& table, int y,
+               int lo_x, int hi_x, std::uint8_t* out) {
+  constexpr int kSize = OccupancyGrid::kTileSize, kMask = kSize - 1;
+  for (int x = lo_x; x <= hi_x;) {
+    const int tile_end = std::min(hi_x + 1, ((x >> OccupancyGrid::kTileBits) + 1) * kSize);
+    const OccupancyGrid::CellValue* tile = grid.TileSteps({x, y});
+    if (tile == nullptr) {
+      out = std::fill_n(out, tile_end - x, kUnknownPixel);
+      x = tile_end;
+      continue;
+    }
+    const OccupancyGrid::CellValue* row = tile + (y & kMask) * kSize;
+    for (; x < tile_end; ++x) *out++ = table[static_cast<std::uint8_t>(row[x & kMask])];
+  }
 }
 
 // A YAML scalar for a file name: plain when that is safe, else double-quoted and escaped.
@@ -90,9 +116,10 @@ OccupancyImage RenderOccupancyImage(const OccupancyGrid& grid, const GridImagePa
   image.resolution_m = grid.resolution();
   image.origin_m = {lo.x * grid.resolution(), lo.y * grid.resolution()};
   image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
-  std::size_t i = 0;
+  const std::array<std::uint8_t, 256> table = PixelTable(params);
   for (int y = hi.y; y >= lo.y; --y) {
-    for (int x = lo.x; x <= hi.x; ++x) image.pixels[i++] = PixelOf(grid, {x, y}, params);
+    RenderRow(grid, table, y, lo.x, hi.x,
+              &image.pixels[static_cast<std::size_t>(hi.y - y) * image.width]);
   }
   return image;
 }
