@@ -145,6 +145,64 @@ int RunIsamCommand(const RunOptions& o) {
   return 0;
 }
 
+// --association and --known-association; returns the first, whose count says if it was given.
+CLI::Option* AddAssociationOptions(CLI::App* cmd, RunOptions& o) {
+  CLI::Option* association = cmd->add_option("--association", o.association,
+                  "nn (nearest neighbour), ml (maximum likelihood), gnn (global nearest "
+                  "neighbour over the scan), jcbb (joint compatibility, Neira & Tardos 2001) or "
+                  "known (the file's landmark ids); FastSLAM takes nn and ml both as each "
+                  "particle's maximum likelihood")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, AssociationMethod>{
+          {"nn", AssociationMethod::kNearestNeighbour},
+          {"jcbb", AssociationMethod::kJointCompatibility},
+          {"ml", AssociationMethod::kMaximumLikelihood},
+          {"gnn", AssociationMethod::kGlobalNearestNeighbour},
+          {"known", AssociationMethod::kKnown}}))
+      ->default_str("nn");
+  cmd->add_flag("--known-association", o.known_association, "the same as --association known")
+      ->excludes("--association");
+  return association;
+}
+
+// The noise and gate options that --config replaces (the two exclude each other).
+std::vector<CLI::Option*> AddIsamTuningOptions(CLI::App* cmd, RunOptions& o) {
+  std::vector<CLI::Option*> tuning;
+  tuning.push_back(
+      cmd->add_option("--jcbb-max-tests", o.jcbb_max_joint_tests,
+                      "jcbb: most joint-compatibility tests per scan before taking the best found")
+          ->capture_default_str()
+          ->check(NonNegativeNumber()));
+  tuning.push_back(cmd->add_option("--odometry-cov-scale", o.odometry_covariance_scale,
+                                   "multiply the file's odometry covariances")
+                       ->capture_default_str()
+                       ->check(PositiveNumber()));
+  tuning.push_back(cmd->add_option("--odometry-noise", o.odometry_noise,
+                                   "SRR,SRT,STR,STT: noise growing with each step's motion (m/m, "
+                                   "m/rad, rad/m, rad/rad), added to the file's")
+                       ->delimiter(',')
+                       ->expected(4)
+                       ->check(NonNegativeNumber()));
+  tuning.push_back(cmd->add_option("--sighting-cov-scale", o.sighting_covariance_scale,
+                                   "multiply the file's sighting covariances")
+                       ->capture_default_str()
+                       ->check(PositiveNumber()));
+  tuning.push_back(cmd->add_option("--sighting-noise", o.sighting_noise,
+                                   "RANGE_M,BEARING_DEG: a range-bearing sensor's noise in place "
+                                   "of the file's sighting covariances")
+                       ->delimiter(',')
+                       ->expected(2)
+                       ->check(PositiveNumber()));
+  tuning.push_back(
+      cmd->add_option("--gate-chi2", o.gate_chi2, "association gate (squared Mahalanobis)")
+          ->capture_default_str()
+          ->check(PositiveNumber()));
+  tuning.push_back(cmd->add_option("--new-landmark-chi2", o.new_landmark_chi2,
+                                   "distance beyond which a sighting starts a new landmark")
+                       ->capture_default_str()
+                       ->check(PositiveNumber()));
+  return tuning;
+}
+
 }  // namespace
 
 void RegisterRun(CLI::App& app, int& exit_code) {
@@ -159,54 +217,8 @@ void RegisterRun(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", o->out, "output directory")->required();
-  CLI::Option* association = cmd->add_option("--association", o->association,
-                  "nn (nearest neighbour), ml (maximum likelihood), gnn (global nearest "
-                  "neighbour over the scan), jcbb (joint compatibility, Neira & Tardos 2001) or "
-                  "known (the file's landmark ids); FastSLAM takes nn and ml both as each "
-                  "particle's maximum likelihood")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, AssociationMethod>{
-          {"nn", AssociationMethod::kNearestNeighbour},
-          {"jcbb", AssociationMethod::kJointCompatibility},
-          {"ml", AssociationMethod::kMaximumLikelihood},
-          {"gnn", AssociationMethod::kGlobalNearestNeighbour},
-          {"known", AssociationMethod::kKnown}}))
-      ->default_str("nn");
-  cmd->add_flag("--known-association", o->known_association, "the same as --association known")
-      ->excludes("--association");
-  std::vector<CLI::Option*> tuning;
-  tuning.push_back(
-      cmd->add_option("--jcbb-max-tests", o->jcbb_max_joint_tests,
-                      "jcbb: most joint-compatibility tests per scan before taking the best found")
-          ->capture_default_str()
-          ->check(NonNegativeNumber()));
-  tuning.push_back(cmd->add_option("--odometry-cov-scale", o->odometry_covariance_scale,
-                                   "multiply the file's odometry covariances")
-                       ->capture_default_str()
-                       ->check(PositiveNumber()));
-  tuning.push_back(cmd->add_option("--odometry-noise", o->odometry_noise,
-                                   "SRR,SRT,STR,STT: noise growing with each step's motion (m/m, "
-                                   "m/rad, rad/m, rad/rad), added to the file's")
-                       ->delimiter(',')
-                       ->expected(4)
-                       ->check(NonNegativeNumber()));
-  tuning.push_back(cmd->add_option("--sighting-cov-scale", o->sighting_covariance_scale,
-                                   "multiply the file's sighting covariances")
-                       ->capture_default_str()
-                       ->check(PositiveNumber()));
-  tuning.push_back(cmd->add_option("--sighting-noise", o->sighting_noise,
-                                   "RANGE_M,BEARING_DEG: a range-bearing sensor's noise in place "
-                                   "of the file's sighting covariances")
-                       ->delimiter(',')
-                       ->expected(2)
-                       ->check(PositiveNumber()));
-  tuning.push_back(
-      cmd->add_option("--gate-chi2", o->gate_chi2, "association gate (squared Mahalanobis)")
-          ->capture_default_str()
-          ->check(PositiveNumber()));
-  tuning.push_back(cmd->add_option("--new-landmark-chi2", o->new_landmark_chi2,
-                                   "distance beyond which a sighting starts a new landmark")
-                       ->capture_default_str()
-                       ->check(PositiveNumber()));
+  CLI::Option* association = AddAssociationOptions(cmd, *o);
+  const std::vector<CLI::Option*> tuning = AddIsamTuningOptions(cmd, *o);
   cmd->add_option("--filter", o->filter,
                   "ekf, fastslam1 or fastslam2 (with --association nn or ml: per-particle "
                   "maximum likelihood)")
