@@ -33,19 +33,8 @@ bool ReopenIfClosed(int fd, int flags) {
 // Thrown to stop a --dry-run between parsing and running.
 struct DryRunDone {};
 
-int Run(int argc, char** argv) {
-  CLI::App app{"slamkit: 2D SLAM on simulated worlds and real robot logs"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("slamkit ") + SLAMKIT_VERSION);
-  int exit_code = 0;
-  bool dry_run = false;
-  app.add_flag("--dry-run", dry_run,
-               "parse the command and check the files it names, then stop: nothing runs, nothing "
-               "is written (slamkit --dry-run grid --log ... --out DIR)");
-  // Runs after every option is parsed and checked and before the command's own callback.
-  app.parse_complete_callback([&dry_run] {
-    if (dry_run) throw DryRunDone();
-  });
+// Every subcommand, in the order `slamkit --help` lists them.
+void RegisterCommands(CLI::App& app, int& exit_code) {
   slamkit::app::RegisterDemo(app, exit_code);
   slamkit::app::RegisterMonteCarlo(app, exit_code);
   slamkit::app::RegisterRun(app, exit_code);
@@ -62,6 +51,22 @@ int Run(int argc, char** argv) {
   slamkit::app::RegisterLocalize(app, exit_code);
   slamkit::app::RegisterMerge(app, exit_code);
   slamkit::app::RegisterReport(app, exit_code);
+}
+
+int Run(int argc, char** argv) {
+  CLI::App app{"slamkit: 2D SLAM on simulated worlds and real robot logs"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("slamkit ") + SLAMKIT_VERSION);
+  int exit_code = 0;
+  bool dry_run = false;
+  app.add_flag("--dry-run", dry_run,
+               "parse the command and check the files it names, then stop: nothing runs, nothing "
+               "is written (slamkit --dry-run grid --log ... --out DIR)");
+  // Runs after every option is parsed and checked and before the command's own callback.
+  app.parse_complete_callback([&dry_run] {
+    if (dry_run) throw DryRunDone();
+  });
+  RegisterCommands(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -84,6 +84,37 @@ IsamRunResult RunIsam(const RunOptions& o, const IsamLog& log, const IsamRunPara
   return RunFastSlamOnIsam(log, params, fastslam);
 }
 
+// The run's summary on stdout (and the noise warning on stderr).
+void PrintIsamRun(const RunOptions& o, const IsamRunResult& result, const IsamRunParams& params) {
+  fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
+             result.sightings, AssociationName(params.ekf.association_method));
+  fmt::print("  {:<28}{:>12}\n", "landmarks mapped", result.map.landmarks.size());
+  fmt::print("  {:<28}{:>12}\n", "sightings dropped", result.dropped);
+  fmt::print("  {:<28}{:>12.4f}\n", "association agreement", result.association_agreement);
+  if (params.score_against_merged_reference) {
+    fmt::print("  {:<28}{:>12.4f}  ({} groups of the file's ids merged)\n", "  merged reference",
+               result.association_agreement_merged, result.reference_merges.size());
+  }
+  PrintHeadingDrift(result.odometry_heading_drift);
+  if (result.smoothed_reference) {
+    const IsamReferenceErrors& e = *result.smoothed_reference;
+    fmt::print("  {:<28}{:>12.3f}  (max {:.2f}; map {:.3f} m over {} landmarks)\n",
+               "vs smoothed reference [m]", e.ate.rmse_m, e.ate.max_m, e.map_rmse_m,
+               e.landmarks_compared);
+  } else if (!result.smoothed_reference_failure.empty()) {
+    fmt::print("  no smoothed reference: {}\n", result.smoothed_reference_failure);
+  }
+  fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
+  if (result.innovation_check) {
+    const InnovationCheck& check = *result.innovation_check;
+    fmt::print("  {:<28}{:>12.4f}  (the gate allows {:.4f}: {})\n", "re-sightings off the gate",
+               check.reobservations_outside_share, check.expected_share,
+               VerdictName(check.verdict));
+    const std::string warning = IsamNoiseWarning(check);
+    if (!warning.empty()) PrintStderr("slamkit: warning: {}\n", warning);
+  }
+}
+
 int RunIsamCommand(const RunOptions& o) {
   const IsamRunParams params = ParamsOf(o);
   if (o.filter != "ekf" &&
@@ -114,33 +145,7 @@ int RunIsamCommand(const RunOptions& o) {
   }
   WriteIsamOutputs(dir, metrics, result);  // metrics.json last
   output.Commit();
-  fmt::print("{}: {} poses, {} sightings, {} association\n", o.isam, result.estimate.size(),
-             result.sightings, AssociationName(params.ekf.association_method));
-  fmt::print("  {:<28}{:>12}\n", "landmarks mapped", result.map.landmarks.size());
-  fmt::print("  {:<28}{:>12}\n", "sightings dropped", result.dropped);
-  fmt::print("  {:<28}{:>12.4f}\n", "association agreement", result.association_agreement);
-  if (params.score_against_merged_reference) {
-    fmt::print("  {:<28}{:>12.4f}  ({} groups of the file's ids merged)\n", "  merged reference",
-               result.association_agreement_merged, result.reference_merges.size());
-  }
-  PrintHeadingDrift(result.odometry_heading_drift);
-  if (result.smoothed_reference) {
-    const IsamReferenceErrors& e = *result.smoothed_reference;
-    fmt::print("  {:<28}{:>12.3f}  (max {:.2f}; map {:.3f} m over {} landmarks)\n",
-               "vs smoothed reference [m]", e.ate.rmse_m, e.ate.max_m, e.map_rmse_m,
-               e.landmarks_compared);
-  } else if (!result.smoothed_reference_failure.empty()) {
-    fmt::print("  no smoothed reference: {}\n", result.smoothed_reference_failure);
-  }
-  fmt::print("  {:<28}{:>12.3f}\n", "wall time [s]", result.wall_time_s);
-  if (result.innovation_check) {
-    const InnovationCheck& check = *result.innovation_check;
-    fmt::print("  {:<28}{:>12.4f}  (the gate allows {:.4f}: {})\n", "re-sightings off the gate",
-               check.reobservations_outside_share, check.expected_share,
-               VerdictName(check.verdict));
-    const std::string warning = IsamNoiseWarning(check);
-    if (!warning.empty()) PrintStderr("slamkit: warning: {}\n", warning);
-  }
+  PrintIsamRun(o, result, params);
   fmt::print("wrote {}\n", o.out);
   return 0;
 }
