@@ -7,9 +7,8 @@ function(slamkit_target_options target)
     # delayed-sampling tests' seeds landed elsewhere). It does not make clang's output GCC's:
     # GCC 12 fuses a * b + c into one FMA in C++ too (-ffp-contract=fast, its default outside
     # ISO C), wherever -march=native offers FMA, and clang with this flag never does. So figures
-    # are reproducible for one compiler and one -march, bit for bit, not across them; a grid
-    # run's match distances differ in their last bits between the matcher's two code paths for
-    # the same reason (docs/architecture.md, "Reproducibility").
+    # are reproducible for one compiler and one -march, bit for bit, not across them
+    # (docs/architecture.md, "Reproducibility").
     target_compile_options(${target} PRIVATE -ffp-contract=off)
   endif()
   set_target_properties(${target} PROPERTIES UNITY_BUILD ${SLAMKIT_UNITY_BUILD})
