@@ -6,7 +6,6 @@
 #include "common/synthetic_room.hpp"
 #include "slamkit/filters/grid/rbpf_grid_slam.hpp"
 #include "slamkit/filters/grid/scan_matcher.hpp"
-#include "slamkit/filters/particles/resampling.hpp"
 #include "slamkit/sim/laser_sim.hpp"
 #include "common/ordered_draws.hpp"
 
@@ -200,25 +199,6 @@ TEST(ScanMatcher, SecondLayerFillsTheMapsUnknownCells) {
   EXPECT_EQ(m.pose.y(), m_alone.pose.y());
   EXPECT_EQ(m.pose.theta(), m_alone.pose.theta());
 }
-
-TEST(Resampling, SystematicKeepsHeavyParticlesAndNeffMeasuresSpread) {
-  Rng rng(3);
-  const std::vector<double> one_heavy = {0.0, 1.0, 0.0, 0.0};
-  EXPECT_EQ(SystematicResample(one_heavy, rng), (std::vector<int>{1, 1, 1, 1}));
-  EXPECT_NEAR(EffectiveSampleSize(one_heavy), 1.0, 1e-12);
-  const std::vector<double> uniform = {0.25, 0.25, 0.25, 0.25};
-  EXPECT_EQ(SystematicResample(uniform, rng), (std::vector<int>{0, 1, 2, 3}));
-  EXPECT_NEAR(EffectiveSampleSize(uniform), 4.0, 1e-12);
-  const std::vector<double> w = NormaliseLogWeights(std::vector<double>{-1000.0, -1000.0 + std::log(3.0)});
-  EXPECT_NEAR(w[0], 0.25, 1e-12);
-  EXPECT_NEAR(w[1], 0.75, 1e-12);
-}
-
-}  // namespace
-}  // namespace slamkit
-
-namespace slamkit {
-namespace {
 
 // A guess whose heading is off by more than the climb recovers (a turn that odometry misjudged)
 // ends in a poor local optimum; retried from other headings, the match finds the room again.

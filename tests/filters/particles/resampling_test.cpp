@@ -74,6 +74,19 @@ TEST(Resampling, SystematicIsLowVarianceFromOneDraw) {
   }
 }
 
+TEST(Resampling, SystematicKeepsHeavyParticlesAndNeffMeasuresSpread) {
+  Rng rng(3);
+  const std::vector<double> one_heavy = {0.0, 1.0, 0.0, 0.0};
+  EXPECT_EQ(SystematicResample(one_heavy, rng), (std::vector<int>{1, 1, 1, 1}));
+  EXPECT_NEAR(EffectiveSampleSize(one_heavy), 1.0, 1e-12);
+  const std::vector<double> uniform = {0.25, 0.25, 0.25, 0.25};
+  EXPECT_EQ(SystematicResample(uniform, rng), (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_NEAR(EffectiveSampleSize(uniform), 4.0, 1e-12);
+  const std::vector<double> w = NormaliseLogWeights(std::vector<double>{-1000.0, -1000.0 + std::log(3.0)});
+  EXPECT_NEAR(w[0], 0.25, 1e-12);
+  EXPECT_NEAR(w[1], 0.75, 1e-12);
+}
+
 TEST(Resampling, SameSeedSameDraws) {
   const std::vector<double> w = {0.1, 0.2, 0.3, 0.4};
   for (ResamplingScheme s : {ResamplingScheme::kSystematic, ResamplingScheme::kStratified,
