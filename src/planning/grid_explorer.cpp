@@ -52,6 +52,40 @@ std::pair<Eigen::Vector2d, Eigen::Vector2d> PointAhead(const std::vector<Eigen::
   return {w.back(), Eigen::Vector2d::Zero()};
 }
 
+// The distance from p to the nearest point of a cell the planner counts as an obstacle (known,
+// above occupied_probability), or reach_m when none is nearer.
+double ObstacleDistance(const OccupancyGrid& map, const Eigen::Vector2d& p, double reach_m,
+                        double occupied_probability) {
+  const double r = map.resolution();
+  const CellIndex c = map.WorldToCell(p);
+  const int k = static_cast<int>(std::ceil(reach_m / r));
+  double best = reach_m;
+  for (int dy = -k; dy <= k; ++dy) {
+    for (int dx = -k; dx <= k; ++dx) {
+      const CellIndex q{c.x + dx, c.y + dy};
+      if (!map.IsKnown(q) || map.Probability(q) <= occupied_probability) continue;
+      const Eigen::Vector2d centre = map.CellCenter(q);
+      const double ex = std::max(std::abs(p.x() - centre.x()) - 0.5 * r, 0.0);
+      const double ey = std::max(std::abs(p.y() - centre.y()) - 0.5 * r, 0.0);
+      best = std::min(best, std::hypot(ex, ey));
+    }
+  }
+  return best;
+}
+
+// Whether every point of the segment from a to b (sampled every half cell) keeps at least min_m
+// from the obstacles.
+bool SegmentKeeps(const OccupancyGrid& map, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                  double min_m, double occupied_probability) {
+  const double step = 0.5 * map.resolution();
+  const int n = std::max(1, static_cast<int>(std::ceil((b - a).norm() / step)));
+  for (int i = 1; i <= n; ++i) {
+    const Eigen::Vector2d q = a + (static_cast<double>(i) / n) * (b - a);
+    if (ObstacleDistance(map, q, min_m, occupied_probability) < min_m) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 GridExplorer::GridExplorer(const GridExplorerParams& params) : params_(params) {}
@@ -70,7 +104,7 @@ Control GridExplorer::Step(const Pose2& estimate, const OccupancyGrid& map, doub
     Plan(estimate, map, t_s, skip);  // the map now holds the whole surroundings of the start
     if (!target_) return u;
   }
-  return Follow(estimate);
+  return Follow(estimate, map);
 }
 
 // A goal reached is given up whatever the map says, and its surroundings with it (see the class).
@@ -162,14 +196,14 @@ bool GridExplorer::TurnAtStart(const Pose2& estimate, Control* u) {
 // Pure pursuit of a point lookahead_m ahead of the robot's place on the path, through the
 // point-ahead controller; a large heading error is turned away on the spot first, since v >= 0
 // and a wide arc would leave the inflated path.
-Control GridExplorer::Follow(const Pose2& estimate) {
+Control GridExplorer::Follow(const Pose2& estimate, const OccupancyGrid& map) {
   const std::vector<Eigen::Vector2d>& w = target_->waypoints_m;
   const Eigen::Vector2d p = estimate.translation();
   Eigen::Vector2d reference = w.back(), direction = Eigen::Vector2d::Zero();
   if (w.size() >= 2) {
     progress_ = NearestLeg(w, std::min(progress_, w.size() - 2), p, params_.lookahead_m + 1.0);
     std::tie(reference, direction) =
-        PointAhead(w, progress_, ProjectOnLeg(w, progress_, p), params_.lookahead_m);
+        ClearPointAhead(map, w, progress_, ProjectOnLeg(w, progress_, p), p);
   }
   const Eigen::Vector2d to_reference = reference - p;
   const double error =
@@ -181,6 +215,24 @@ Control GridExplorer::Follow(const Pose2& estimate) {
   }
   return TrackReference(estimate, reference, params_.control.speed_mps * direction,
                         params_.control);
+}
+
+// The pursuit's point: lookahead_m ahead on the path, or nearer (three quarters, a half, a
+// quarter of it, then the path's point nearest the robot) until the straight line to it keeps
+// the robot's radius from every obstacle, or keeps what the robot has when it is already nearer.
+// Past a door jamb the full look-ahead would steer the robot across the jamb's inflated zone
+// (the office floor of docs/pslam.md: 0.139 m from a wall for a 0.3 m radius).
+std::pair<Eigen::Vector2d, Eigen::Vector2d> GridExplorer::ClearPointAhead(
+    const OccupancyGrid& map, const std::vector<Eigen::Vector2d>& waypoints, std::size_t leg,
+    double s, const Eigen::Vector2d& position) const {
+  const double occupied = params_.paths.occupied_probability;
+  const double radius = params_.paths.robot_radius_m;
+  const double keep = std::min(radius, ObstacleDistance(map, position, radius, occupied));
+  for (int quarters = 4; quarters > 0; --quarters) {
+    const auto point = PointAhead(waypoints, leg, s, params_.lookahead_m * quarters / 4.0);
+    if (SegmentKeeps(map, position, point.first, keep, occupied)) return point;
+  }
+  return PointAhead(waypoints, leg, s, 0.0);
 }
 
 }  // namespace slamkit

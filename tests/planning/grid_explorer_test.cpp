@@ -144,6 +144,18 @@ TEST(GridExplorer, ExploresTwoRoomsRoundAPartitionWithinTheRobotsLimits) {
   ExpectExploredWithinLimits(Explore(TwoRooms(), inside, Pose2(1.2, 1.0, 0.3), 7.0, 3.5, 3000), 2);
 }
 
+// Started beside the door in the second room, the robot's first paths round the door's jamb:
+// pursuing the full look-ahead past the jamb cut its corner to 0.21 m of the wall (for a 0.3 m
+// radius); the point ahead is brought nearer until the line to it keeps the radius.
+TEST(GridExplorer, RoundsADoorJambWithoutCuttingItsCorner) {
+  const FreeSpace inside = [](const Eigen::Vector2d&) { return true; };
+  for (const double heading : {1.6, 3.1}) {
+    SCOPED_TRACE(heading);
+    ExpectExploredWithinLimits(
+        Explore(TwoRooms(), inside, Pose2(4.0, 2.9, heading), 7.0, 3.5, 3000), 2);
+  }
+}
+
 TEST(GridExplorer, ExploresASmallMazeWithinTheRobotsLimits) {
   // A 10 m square around 2 × 2 blocks of 2 m, corridors of 2 m.
   const FloorPlan maze =

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -38,7 +39,8 @@ struct GridExplorerParams {
 // Each control period it takes the SLAM pose estimate and map (e.g. the best particle's) and
 // returns the unicycle command (v, ω); it never sees the truth. It drives to the nearest
 // reachable frontier (NearestReachableFrontier on the inflated map) along the simplified path,
-// steering to a point lookahead_m ahead on it with TrackReference, and stops when no reachable
+// steering to a point lookahead_m ahead on it with TrackReference (nearer where the straight line
+// to that point would bring the robot within its radius of an obstacle), and stops when no reachable
 // frontier is left that `skip` keeps (P-SLAM: regions already predicted need no visit).
 // Once there is something to explore, it first turns a full 2π in place: the laser sees 180°
 // only, and the map behind the start would otherwise be unknown until the robot came back.
@@ -73,7 +75,10 @@ class GridExplorer {
   void KeepCurrentGoal(const GridPathCosts& costs, const std::vector<FrontierRegion>& candidates,
                        FrontierTarget* best) const;
   bool TurnAtStart(const Pose2& estimate, Control* u);
-  Control Follow(const Pose2& estimate);
+  Control Follow(const Pose2& estimate, const OccupancyGrid& map);
+  std::pair<Eigen::Vector2d, Eigen::Vector2d> ClearPointAhead(
+      const OccupancyGrid& map, const std::vector<Eigen::Vector2d>& waypoints, std::size_t leg,
+      double s, const Eigen::Vector2d& position) const;
 
   GridExplorerParams params_;
   std::optional<FrontierTarget> target_;
