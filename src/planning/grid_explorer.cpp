@@ -193,9 +193,9 @@ bool GridExplorer::TurnAtStart(const Pose2& estimate, Control* u) {
   return true;
 }
 
-// Pure pursuit of a point lookahead_m ahead of the robot's place on the path, through the
-// point-ahead controller; a large heading error is turned away on the spot first, since v >= 0
-// and a wide arc would leave the inflated path.
+// Pure pursuit of a point up to lookahead_m ahead of the robot's place on the path
+// (ClearPointAhead), through the point-ahead controller; a large heading error is turned away on
+// the spot first, since v >= 0 and a wide arc would leave the inflated path.
 Control GridExplorer::Follow(const Pose2& estimate, const OccupancyGrid& map) {
   const std::vector<Eigen::Vector2d>& w = target_->waypoints_m;
   const Eigen::Vector2d p = estimate.translation();
@@ -221,7 +221,7 @@ Control GridExplorer::Follow(const Pose2& estimate, const OccupancyGrid& map) {
 // quarter of it, then the path's point nearest the robot) until the straight line to it keeps
 // the robot's radius from every obstacle, or keeps what the robot has when it is already nearer.
 // Past a door jamb the full look-ahead would steer the robot across the jamb's inflated zone
-// (the office floor of docs/pslam.md: 0.139 m from a wall for a 0.3 m radius).
+// (docs/pslam.md, "Open").
 std::pair<Eigen::Vector2d, Eigen::Vector2d> GridExplorer::ClearPointAhead(
     const OccupancyGrid& map, const std::vector<Eigen::Vector2d>& waypoints, std::size_t leg,
     double s, const Eigen::Vector2d& position) const {
