@@ -25,7 +25,6 @@ using testing::ReadText;
 using testing::RunCli;
 namespace fs = std::filesystem;
 
-
 TEST(Cli, ClosedOrFullStderrDoesNotAbort) {
   const fs::path dir = FreshDir("stderr_closed");
   int k = 0;

@@ -21,7 +21,6 @@ using testing::ReadText;
 using testing::RunCli;
 namespace fs = std::filesystem;
 
-
 TEST(Suite, GridComparesWithAReferenceFileByTimeOrIndex) {
   const std::string suite = std::string(SLAMKIT_DATASETS_DIR) + "/carmen/suite/";
   if (!fs::exists(suite + "freiburg-101.log.gz")) GTEST_SKIP() << "no suite";

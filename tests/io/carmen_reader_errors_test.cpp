@@ -35,7 +35,6 @@ void WriteGzip(const fs::path& path, const std::string& text) {
   ASSERT_EQ(gzclose(file), Z_OK);
 }
 
-
 TEST_F(CarmenReader, RejectsMalformedLinesWithTheirNumber) {
   const std::string ok = "# header\n" + Odom(0, 0, 0, 10) + Flaser(10);
   EXPECT_TRUE(Contains(ErrorOfLog(ok + "FLASER 3 1 2 0 0 0 0 0 0 2 host 0\n"),

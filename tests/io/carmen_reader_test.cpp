@@ -29,7 +29,6 @@ using testing::ExpectSamePose;
 
 const fs::path kCarmenDir = fs::path(SLAMKIT_DATASETS_DIR) / "carmen";
 
-
 TEST_F(CarmenReader, IntelClockJitterIsAcceptedButNotALargerStepBack) {
   // Line 26 is ODOM at 976052858.404130, line 28 ODOM at 976052858.139632 (0.26 s back).
   CarmenReadOptions strict;
