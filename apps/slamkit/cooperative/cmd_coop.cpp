@@ -39,7 +39,11 @@ std::vector<CoopMode> ModesOf(const std::string& name, bool data_set) {
   if (name == "all") {
     std::vector<CoopMode> modes = {CoopMode::kMono, CoopMode::kExtended, CoopMode::kExact,
                                    CoopMode::kCentral};
-    if (data_set) modes.insert(modes.begin(), CoopMode::kDeadReckoning);
+    // On a data set, what Mono starts from and what Mono's data allow at best come too.
+    if (data_set) {
+      modes.insert(modes.begin(), CoopMode::kDeadReckoning);
+      modes.push_back(CoopMode::kMonoSmoothed);
+    }
     return modes;
   }
   return {*CoopModeFromName(name)};
@@ -131,8 +135,10 @@ void RegisterCoop(CLI::App& app, int& exit_code) {
       ->check(NonNegativeNumber());
   cmd->add_option("--duration", o->duration_s, "MRCLAM: seconds to run (0: to the end)")
       ->check(NonNegativeNumber());
-  cmd->add_option("--mode", o->mode, "mono, eo, eo-exact, central, dead-reckoning or all")
-      ->check(CLI::IsMember({"all", "mono", "eo", "eo-exact", "central", "dead-reckoning"}))
+  cmd->add_option("--mode", o->mode,
+                  "mono, eo, eo-exact, central, dead-reckoning, mono-smoothed or all")
+      ->check(CLI::IsMember(
+          {"all", "mono", "eo", "eo-exact", "central", "dead-reckoning", "mono-smoothed"}))
       ->capture_default_str();
   cmd->add_option("--association", o->association,
                   "known (ids of the source) or nn, jcbb, ml, gnn (default: the config's)")

@@ -12,7 +12,7 @@ namespace {
 // landmarks (black crosses) and each vehicle's map (circles in its colour; one map for central).
 SeriesFigureData PathsFigure(const CoopModeResult& run, const LandmarkWorld& landmarks) {
   SeriesFigureData paths;
-  paths.title = fmt::format("{}: paths (true dashed), landmarks (true +, mapped o), run 0",
+  paths.title = fmt::format("{}: paths and maps, run 0 (true paths dashed)",
                             CoopModeName(run.mode));
   paths.x_label = "x [m]";
   paths.y_label = "y [m]";
@@ -61,7 +61,7 @@ void WriteCoopFigures(const std::filesystem::path& dir, const CoopStudyResult& r
   cov.y_label = "||C_pp|| [m^2]";
   int colour = 0;
   for (const CoopModeSummary& m : r.modes) {
-    if (m.mode == CoopMode::kDeadReckoning) continue;
+    if (!HasCovariance(m.mode)) continue;
     for (std::size_t v = 0; v < m.vehicles.size(); ++v) {
       cov.series.push_back({fmt::format("{} vehicle {}", CoopModeName(m.mode), v),
                             m.vehicles[v].t_s, m.vehicles[v].position_cov_norm, colour,

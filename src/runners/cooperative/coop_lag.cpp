@@ -3,7 +3,6 @@
 #include "slamkit/models/unicycle.hpp"
 
 namespace slamkit::internal {
-namespace {
 
 void Step(const UnicycleModel& model, const CoopFilterParams& p, const Control& u, double dt_s,
           PoseNow* x) {
@@ -15,8 +14,6 @@ void Step(const UnicycleModel& model, const CoopFilterParams& p, const Control& 
   x->covariance = J_x * x->covariance * J_x.transpose() + J_u * Q * J_u.transpose();
   x->t_s += dt_s;
 }
-
-}  // namespace
 
 ControlCovariance ControlNoise(const CoopFilterParams& p, const Control& u, double dt_s) {
   if (!p.control_noise_density) return UnicycleModel(p.motion).Noise(u, dt_s);

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "slamkit/core/fleet_log.hpp"
+#include "slamkit/models/unicycle.hpp"
 #include "slamkit/runners/cooperative/coop_run.hpp"
 
 namespace slamkit::internal {
@@ -19,6 +20,11 @@ struct PoseNow {
 
 // The control noise of one interval, as the filters use it (a density when the config gives one).
 ControlCovariance ControlNoise(const CoopFilterParams& p, const Control& u, double dt_s);
+
+// `x` moved on by control u held for dt_s (nothing for dt_s <= 0), its covariance propagated as
+// the filters predict.
+void Step(const UnicycleModel& model, const CoopFilterParams& p, const Control& u, double dt_s,
+          PoseNow* x);
 
 // With messages up to `lag_s` late, vehicle `self`'s filter takes the events of time t when
 // real time reaches t + lag_s, every message about t being in hand then. Its estimate at real

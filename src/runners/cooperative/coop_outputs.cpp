@@ -57,7 +57,7 @@ nlohmann::json CoopMetricsJson(const CoopStudyResult& r) {
     nlohmann::json vehicles = nlohmann::json::array();
     double position_sum = 0.0;
     for (const CoopVehicleSummary& v : m.vehicles) {
-      const bool ir = has_mono && m.mode != CoopMode::kMono && m.mode != CoopMode::kDeadReckoning;
+      const bool ir = has_mono && m.mode != CoopMode::kMono && HasCovariance(m.mode);
       vehicles.push_back(VehicleJson(v, ir));
       position_sum += v.position_rmse_m;
     }

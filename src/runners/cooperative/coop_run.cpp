@@ -9,6 +9,7 @@
 
 #include "coop_lag.hpp"
 #include "coop_scoring.hpp"
+#include "coop_smoothed.hpp"
 #include "slamkit/eval/errors.hpp"
 
 namespace slamkit {
@@ -29,6 +30,7 @@ struct Estimator {
   std::vector<std::pair<int, LandmarkId>> assigned;  // (landmark, true id) of each used sighting
   std::vector<double> last_record_s;
   int self = -1;      // the vehicle whose filter this is (-1: the central filter)
+  Trajectory* own_path = nullptr;  // when set, gets self's pose at each of its controls
   double lag_s = 0.0;  // how far behind real time it runs (delayed messages)
 };
 
@@ -121,6 +123,7 @@ void Process(const FleetLog& log, const FleetTruth& truth, const std::vector<Lan
     if (ev.kind == FleetEvent::Kind::kControl) {
       const int v = ev.vehicle;
       Advance(e, v, ev.t_s, p);
+      if (e.own_path != nullptr && v == e.self) e.own_path->push_back({ev.t_s, e.filter->PoseOf(v)});
       e.control[v] = Control(2);
       e.control[v] << ev.value.x(), ev.value.y();
       if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s) {
@@ -177,6 +180,40 @@ void AddCounts(const CooperativeEkfSlam::Counts& c, CooperativeEkfSlam::Counts* 
   sum->landmark_dropped += c.landmark_dropped;
 }
 
+// CoopMode::kMonoSmoothed: each vehicle's Mono filter gives its smoother the start.
+CoopModeResult MonoSmoothed(const FleetLog& log, const FleetTruth& truth,
+                            const std::vector<LandmarkId>& true_ids, const CoopFilterParams& p,
+                            std::uint64_t message_seed) {
+  CoopModeResult out;
+  out.mode = CoopMode::kMonoSmoothed;
+  out.vehicles.resize(log.vehicles);
+  for (int v = 0; v < log.vehicles; ++v) {
+    Estimator e = MakeEstimator(log, CoopMode::kMono, v, p);
+    Trajectory filtered;
+    e.own_path = &filtered;
+    Rng rng(message_seed + static_cast<std::uint64_t>(v));
+    CoopModeResult unrecorded;
+    double update_s = 0.0;
+    Process(log, truth, true_ids, DeliveredEvents(log, v, p.messages, rng),
+            std::vector<char>(log.vehicles, 0), p, e, &unrecorded, &update_s);
+    const internal::MonoSmoothing s = internal::SmoothMonoVehicle(log, true_ids, v, filtered, p);
+    CoopVehicleTrace& trace = out.vehicles[v];
+    double last_s = -1e300;
+    for (const StampedPose& pose : s.path) {
+      if (pose.t_s - last_s >= p.record_period_s &&
+          Record(trace, pose.t_s, pose.pose, Eigen::Matrix3d::Zero(), truth.paths[v])) {
+        last_s = pose.t_s;
+      }
+    }
+    trace.map = s.map;
+    trace.counts.landmark_updates = s.sightings_used;
+    trace.counts.landmark_dropped = s.sightings_dropped;
+    Summarise(trace, truth.world, s.landmark_truth);
+    AddCounts(trace.counts, &out.counts);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string_view CoopModeName(CoopMode mode) {
@@ -186,22 +223,28 @@ std::string_view CoopModeName(CoopMode mode) {
     case CoopMode::kExtended: return "eo";
     case CoopMode::kExact: return "eo-exact";
     case CoopMode::kCentral: return "central";
+    case CoopMode::kMonoSmoothed: return "mono-smoothed";
   }
   return "unknown";
 }
 
 std::optional<CoopMode> CoopModeFromName(std::string_view name) {
   for (const CoopMode m : {CoopMode::kDeadReckoning, CoopMode::kMono, CoopMode::kExtended,
-                           CoopMode::kExact, CoopMode::kCentral}) {
+                           CoopMode::kExact, CoopMode::kCentral, CoopMode::kMonoSmoothed}) {
     if (CoopModeName(m) == name) return m;
   }
   return std::nullopt;
+}
+
+bool HasCovariance(CoopMode mode) {
+  return mode != CoopMode::kDeadReckoning && mode != CoopMode::kMonoSmoothed;
 }
 
 CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
                            const std::vector<LandmarkId>& true_ids, CoopMode mode,
                            const CoopFilterParams& params, std::uint64_t message_seed) {
   if (mode == CoopMode::kDeadReckoning) return DeadReckoning(log, truth, params);
+  if (mode == CoopMode::kMonoSmoothed) return MonoSmoothed(log, truth, true_ids, params, message_seed);
   CoopModeResult out;
   out.mode = mode;
   out.vehicles.resize(log.vehicles);
@@ -241,31 +284,6 @@ CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
   }
   out.update_time_mean_s = out.scans > 0 ? update_s / double(out.scans) : 0.0;
   return out;
-}
-
-std::vector<double> ImprovementRatio(const std::vector<double>& mono_t_s,
-                                     const std::vector<double>& mono_norm,
-                                     const std::vector<double>& t_s,
-                                     const std::vector<double>& norm) {
-  std::vector<double> ir;
-  std::size_t j = 0;  // Mono's latest record at or before t_s[k]
-  for (std::size_t k = 0; k < std::min(t_s.size(), norm.size()); ++k) {
-    while (j + 1 < mono_t_s.size() && mono_t_s[j + 1] <= t_s[k]) ++j;
-    if (mono_t_s.empty() || mono_t_s[j] > t_s[k] || j >= mono_norm.size()) continue;
-    const double m = mono_norm[j];
-    ir.push_back(m > 0.0 ? 100.0 * (m - norm[k]) / m : 0.0);
-  }
-  return ir;
-}
-
-std::vector<double> ImprovementRatio(const CoopVehicleTrace& mono, const CoopVehicleTrace& other) {
-  const auto times = [](const Trajectory& path) {
-    std::vector<double> t;
-    for (const StampedPose& p : path) t.push_back(p.t_s);
-    return t;
-  };
-  return ImprovementRatio(times(mono.estimate), mono.position_cov_norm, times(other.estimate),
-                          other.position_cov_norm);
 }
 
 }  // namespace slamkit

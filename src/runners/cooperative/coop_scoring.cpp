@@ -102,3 +102,32 @@ CoopModeResult DeadReckoning(const FleetLog& log, const FleetTruth& truth,
 }
 
 }  // namespace slamkit::internal
+
+namespace slamkit {
+
+std::vector<double> ImprovementRatio(const std::vector<double>& mono_t_s,
+                                     const std::vector<double>& mono_norm,
+                                     const std::vector<double>& t_s,
+                                     const std::vector<double>& norm) {
+  std::vector<double> ir;
+  std::size_t j = 0;  // Mono's latest record at or before t_s[k]
+  for (std::size_t k = 0; k < std::min(t_s.size(), norm.size()); ++k) {
+    while (j + 1 < mono_t_s.size() && mono_t_s[j + 1] <= t_s[k]) ++j;
+    if (mono_t_s.empty() || mono_t_s[j] > t_s[k] || j >= mono_norm.size()) continue;
+    const double m = mono_norm[j];
+    ir.push_back(m > 0.0 ? 100.0 * (m - norm[k]) / m : 0.0);
+  }
+  return ir;
+}
+
+std::vector<double> ImprovementRatio(const CoopVehicleTrace& mono, const CoopVehicleTrace& other) {
+  const auto times = [](const Trajectory& path) {
+    std::vector<double> t;
+    for (const StampedPose& p : path) t.push_back(p.t_s);
+    return t;
+  };
+  return ImprovementRatio(times(mono.estimate), mono.position_cov_norm, times(other.estimate),
+                          other.position_cov_norm);
+}
+
+}  // namespace slamkit

@@ -80,7 +80,7 @@ void AddImprovementRatios(CoopStudyResult* r) {
                                  [](const CoopModeSummary& m) { return m.mode == CoopMode::kMono; });
   if (mono == r->modes.end()) return;
   for (CoopModeSummary& m : r->modes) {
-    if (m.mode == CoopMode::kMono || m.mode == CoopMode::kDeadReckoning) continue;
+    if (m.mode == CoopMode::kMono || !HasCovariance(m.mode)) continue;
     for (std::size_t v = 0; v < m.vehicles.size(); ++v) {
       CoopVehicleSummary& s = m.vehicles[v];
       const CoopVehicleSummary& base = mono->vehicles[v];

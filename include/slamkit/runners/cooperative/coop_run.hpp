@@ -24,9 +24,16 @@ enum class CoopMode {
   kExtended,       // CooperativeMode::kExtended per vehicle (the seed's EO-CSLAM)
   kExact,          // CooperativeMode::kExact per vehicle, each fed what reaches it
   kCentral,        // one CooperativeMode::kExact filter fed every event
+  // Not a filter: the batch maximum a posteriori of each vehicle's own data, what Mono uses
+  // (eval's SmoothLandmarkSlam from the Mono filter's path, the sightings' true ids). It uses
+  // later data too, so it shows what a Mono filter could reach at best on a log; no covariance.
+  kMonoSmoothed,
 };
-std::string_view CoopModeName(CoopMode mode);  // "dead-reckoning", "mono", "eo", "eo-exact", "central"
+// "dead-reckoning", "mono", "eo", "eo-exact", "central", "mono-smoothed"
+std::string_view CoopModeName(CoopMode mode);
 std::optional<CoopMode> CoopModeFromName(std::string_view name);
+// Whether a mode's estimates carry a covariance (NEES, ‖C‖, IR): every filter's.
+bool HasCovariance(CoopMode mode);
 
 // What the filters of a cooperative run are made of, and what they are told.
 struct CoopFilterParams {
