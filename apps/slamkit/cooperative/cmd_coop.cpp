@@ -56,14 +56,17 @@ std::vector<int> RobotsOf(const std::string& text) {
 }
 
 void PrintSummary(const CoopStudyResult& r) {
-  fmt::print("{:<15}{:>8}{:>14}{:>14}{:>10}{:>10}{:>11}{:>8}{:>12}{:>12}\n", "mode", "vehicle",
-             "position [m]", "heading [rad]", "ANEES", "map [m]", "landmarks", "assoc",
-             "IR mean %", "update [ms]");
+  fmt::print("{:<15}{:>8}{:>14}{:>13}{:>14}{:>10}{:>10}{:>11}{:>8}{:>12}{:>12}\n", "mode",
+             "vehicle", "position [m]", "aligned [m]", "heading [rad]", "ANEES", "map [m]",
+             "landmarks", "assoc", "IR mean %", "update [ms]");
   for (const CoopModeSummary& m : r.modes) {
     for (std::size_t v = 0; v < m.vehicles.size(); ++v) {
       const CoopVehicleSummary& s = m.vehicles[v];
-      fmt::print("{:<15}{:>8}{:>14.4f}{:>14.4f}{:>10.3f}{:>10}{:>11.1f}{:>8}{:>12.1f}{:>12.3f}\n",
-                 CoopModeName(m.mode), v, s.position_rmse_m, s.heading_rmse_rad, s.anees,
+      const std::string aligned = s.position_aligned_rmse_m >= 0.0
+                                      ? fmt::format("{:.4f}", s.position_aligned_rmse_m)
+                                      : "-";
+      fmt::print("{:<15}{:>8}{:>14.4f}{:>13}{:>14.4f}{:>10.3f}{:>10}{:>11.1f}{:>8}{:>12.1f}{:>12.3f}\n",
+                 CoopModeName(m.mode), v, s.position_rmse_m, aligned, s.heading_rmse_rad, s.anees,
                  s.map_rmse_m >= 0.0 ? fmt::format("{:.3f}", s.map_rmse_m) : "-", s.landmarks,
                  s.association_agreement >= 0.0 ? fmt::format("{:.3f}", s.association_agreement)
                                                 : "-",

@@ -12,6 +12,9 @@ namespace {
 
 nlohmann::json VehicleJson(const CoopVehicleSummary& v, bool has_ir) {
   nlohmann::json j = {{"position_rmse_m", v.position_rmse_m},
+                      {"position_rmse_aligned_m", v.position_aligned_rmse_m >= 0.0
+                                                      ? nlohmann::json(v.position_aligned_rmse_m)
+                                                      : nullptr},
                       {"heading_rmse_rad", v.heading_rmse_rad},
                       {"anees", v.anees},
                       {"anees_in_band", v.anees_in_band},

@@ -65,6 +65,14 @@ void Summarise(CoopVehicleTrace& trace, const LandmarkWorld& world,
   const PoseRmse rmse = ComputePoseRmse(errors);
   trace.position_rmse_m = rmse.position_m;
   trace.heading_rmse_rad = rmse.heading_rad;
+  if (trace.estimate.size() >= 2) {
+    std::vector<Eigen::Vector2d> estimated, true_positions;
+    for (std::size_t k = 0; k < trace.estimate.size(); ++k) {
+      estimated.push_back(trace.estimate[k].pose.translation());
+      true_positions.push_back(trace.truth[k].pose.translation());
+    }
+    trace.position_aligned_rmse_m = AlignPoints(estimated, true_positions).rmse_m;
+  }
   trace.mean_nees = defined > 0 ? nees_sum / defined : kNoValue;
   std::unordered_map<LandmarkId, Eigen::Vector2d> truth;
   for (const Landmark& l : world.landmarks) truth.emplace(l.id, l.position_m);

@@ -14,8 +14,8 @@ namespace {
 
 struct VehicleSums {
   double position_sq = 0.0, heading_sq = 0.0, nees = 0.0, map = 0.0, landmarks = 0.0;
-  double agreement = 0.0;
-  int maps = 0, nees_runs = 0, agreements = 0;
+  double agreement = 0.0, aligned_sq = 0.0;
+  int maps = 0, nees_runs = 0, agreements = 0, aligned = 0;
   std::vector<double> cov_norm, nees_per_record;
   std::vector<int> nees_count;  // per record, the runs where it is defined
 };
@@ -23,6 +23,10 @@ struct VehicleSums {
 void Accumulate(const CoopVehicleTrace& trace, VehicleSums* s) {
   s->position_sq += trace.position_rmse_m * trace.position_rmse_m;
   s->heading_sq += trace.heading_rmse_rad * trace.heading_rmse_rad;
+  if (trace.position_aligned_rmse_m >= 0.0) {
+    s->aligned_sq += trace.position_aligned_rmse_m * trace.position_aligned_rmse_m;
+    ++s->aligned;
+  }
   if (std::isfinite(trace.mean_nees)) {
     s->nees += trace.mean_nees;
     ++s->nees_runs;
@@ -54,6 +58,7 @@ CoopVehicleSummary Summary(const VehicleSums& s, int runs, const ChiSquareBand& 
   CoopVehicleSummary v;
   v.position_rmse_m = std::sqrt(s.position_sq / runs);
   v.heading_rmse_rad = std::sqrt(s.heading_sq / runs);
+  v.position_aligned_rmse_m = s.aligned > 0 ? std::sqrt(s.aligned_sq / s.aligned) : -1.0;
   v.anees = s.nees_runs > 0 ? s.nees / s.nees_runs : std::numeric_limits<double>::quiet_NaN();
   v.map_rmse_m = s.maps > 0 ? s.map / s.maps : -1.0;
   v.landmarks = s.landmarks / runs;

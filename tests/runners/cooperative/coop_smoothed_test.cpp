@@ -46,6 +46,7 @@ TEST(CoopSmoothed, RecoversANoiseFreeFleetExactly) {
   for (const CoopVehicleTrace& v : smoothed.vehicles) {
     ASSERT_GT(v.estimate.size(), 100u);
     EXPECT_LT(v.position_rmse_m, 1e-4);
+    EXPECT_LT(v.position_aligned_rmse_m, 1e-4);
     EXPECT_LT(v.heading_rmse_rad, 1e-6);
     EXPECT_LT(v.map_rmse_m, 1e-4);
     EXPECT_EQ(v.counts.landmark_dropped, 0);
@@ -73,6 +74,21 @@ TEST(CoopSmoothed, DropsASightingBeyondTheGate) {
       RunCoopMode(run.log, run.truth, run.landmark_ids, CoopMode::kMonoSmoothed, c.filter, c.seed);
   EXPECT_EQ(ungated.vehicles[0].counts.landmark_dropped, 0);
   EXPECT_GT(ungated.vehicles[0].position_rmse_m, 1e-2);
+}
+
+// Dead reckoning of noise-free controls from a wrong start pose is the true path moved by one
+// rigid transform: its error is all frame, and the aligned error must remove it.
+TEST(CoopScoring, TheAlignedErrorRemovesAWrongFrame) {
+  const CoopConfig c = ShortNoisyMarine();
+  FleetRun run = NoiseFreeRun(c);
+  const Pose2 truth_start = run.log.start_poses[0];
+  run.log.start_poses[0] =
+      Pose2(truth_start.x() + 30.0, truth_start.y() - 20.0, truth_start.theta() + 0.05);
+  const CoopModeResult dr =
+      RunCoopMode(run.log, run.truth, run.landmark_ids, CoopMode::kDeadReckoning, c.filter, c.seed);
+  EXPECT_GT(dr.vehicles[0].position_rmse_m, 10.0);
+  EXPECT_LT(dr.vehicles[0].position_aligned_rmse_m, 1e-6);
+  EXPECT_LT(dr.vehicles[1].position_rmse_m, 1e-6);  // its start was left as it was
 }
 
 }  // namespace

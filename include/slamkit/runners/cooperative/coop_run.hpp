@@ -66,6 +66,10 @@ struct CoopVehicleTrace {
   // the spectral norm of the position covariance (the seed's ‖C‖).
   double position_rmse_m = 0.0;
   double heading_rmse_rad = 0.0;
+  // The position RMSE once the whole recorded path is rigidly aligned to the truth (eval's
+  // AlignPoints): the error that a shift and a turn of the frame do not explain; -1 below two
+  // records.
+  double position_aligned_rmse_m = -1.0;
   double mean_nees = 0.0;
   std::vector<double> nees;
   std::vector<double> position_cov_norm;

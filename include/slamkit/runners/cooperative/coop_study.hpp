@@ -15,6 +15,7 @@ namespace slamkit {
 struct CoopVehicleSummary {
   double position_rmse_m = 0.0;  // √ of the mean over runs of each run's RMS²
   double heading_rmse_rad = 0.0;
+  double position_aligned_rmse_m = -1.0;  // as position_rmse_m, over the runs that have one
   double anees = 0.0;            // the mean over runs and records of the pose NEES
   double anees_in_band = 0.0;    // share of the records whose mean over runs is in `band`
   double map_rmse_m = -1.0;      // mean over the runs that have one
