@@ -65,12 +65,12 @@ void PrintSummary(const CoopStudyResult& r) {
       const std::string aligned = s.position_aligned_rmse_m >= 0.0
                                       ? fmt::format("{:.4f}", s.position_aligned_rmse_m)
                                       : "-";
-      fmt::print("{:<15}{:>8}{:>14.4f}{:>13}{:>14.4f}{:>10.3f}{:>10}{:>11.1f}{:>8}{:>12.1f}{:>12.3f}\n",
-                 CoopModeName(m.mode), v, s.position_rmse_m, aligned, s.heading_rmse_rad, s.anees,
-                 s.map_rmse_m >= 0.0 ? fmt::format("{:.3f}", s.map_rmse_m) : "-", s.landmarks,
-                 s.association_agreement >= 0.0 ? fmt::format("{:.3f}", s.association_agreement)
-                                                : "-",
-                 s.improvement_ratio_mean_pct, 1e3 * m.update_time_mean_s);
+      fmt::print(
+          "{:<15}{:>8}{:>14.4f}{:>13}{:>14.4f}{:>10.3f}{:>10}{:>11.1f}{:>8}{:>12.1f}{:>12.3f}\n",
+          CoopModeName(m.mode), v, s.position_rmse_m, aligned, s.heading_rmse_rad, s.anees,
+          s.map_rmse_m >= 0.0 ? fmt::format("{:.3f}", s.map_rmse_m) : "-", s.landmarks,
+          s.association_agreement >= 0.0 ? fmt::format("{:.3f}", s.association_agreement) : "-",
+          s.improvement_ratio_mean_pct, 1e3 * m.update_time_mean_s);
     }
   }
   fmt::print("ANEES band for {} runs: [{:.3f}, {:.3f}]\n", r.runs,

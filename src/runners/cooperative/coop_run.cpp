@@ -123,7 +123,9 @@ void Process(const FleetLog& log, const FleetTruth& truth, const std::vector<Lan
     if (ev.kind == FleetEvent::Kind::kControl) {
       const int v = ev.vehicle;
       Advance(e, v, ev.t_s, p);
-      if (e.own_path != nullptr && v == e.self) e.own_path->push_back({ev.t_s, e.filter->PoseOf(v)});
+      if (e.own_path != nullptr && v == e.self) {
+        e.own_path->push_back({ev.t_s, e.filter->PoseOf(v)});
+      }
       e.control[v] = Control(2);
       e.control[v] << ev.value.x(), ev.value.y();
       if (recorded[v] && e.filter->Tracks(v) && ev.t_s - e.last_record_s[v] >= p.record_period_s) {
@@ -244,7 +246,9 @@ CoopModeResult RunCoopMode(const FleetLog& log, const FleetTruth& truth,
                            const std::vector<LandmarkId>& true_ids, CoopMode mode,
                            const CoopFilterParams& params, std::uint64_t message_seed) {
   if (mode == CoopMode::kDeadReckoning) return DeadReckoning(log, truth, params);
-  if (mode == CoopMode::kMonoSmoothed) return MonoSmoothed(log, truth, true_ids, params, message_seed);
+  if (mode == CoopMode::kMonoSmoothed) {
+    return MonoSmoothed(log, truth, true_ids, params, message_seed);
+  }
   CoopModeResult out;
   out.mode = mode;
   out.vehicles.resize(log.vehicles);

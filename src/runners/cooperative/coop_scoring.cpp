@@ -16,6 +16,18 @@ namespace slamkit::internal {
 namespace {
 constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMaxTruthGapS = 0.5;
+
+// CoopVehicleTrace::position_aligned_rmse_m.
+double AlignedPositionRmse(const CoopVehicleTrace& trace) {
+  if (trace.estimate.size() < 2) return -1.0;
+  std::vector<Eigen::Vector2d> estimated, true_positions;
+  for (std::size_t k = 0; k < trace.estimate.size(); ++k) {
+    estimated.push_back(trace.estimate[k].pose.translation());
+    true_positions.push_back(trace.truth[k].pose.translation());
+  }
+  return AlignPoints(estimated, true_positions).rmse_m;
+}
+
 }  // namespace
 
 std::optional<Pose2> TruthAt(const Trajectory& path, double t) {
@@ -65,14 +77,7 @@ void Summarise(CoopVehicleTrace& trace, const LandmarkWorld& world,
   const PoseRmse rmse = ComputePoseRmse(errors);
   trace.position_rmse_m = rmse.position_m;
   trace.heading_rmse_rad = rmse.heading_rad;
-  if (trace.estimate.size() >= 2) {
-    std::vector<Eigen::Vector2d> estimated, true_positions;
-    for (std::size_t k = 0; k < trace.estimate.size(); ++k) {
-      estimated.push_back(trace.estimate[k].pose.translation());
-      true_positions.push_back(trace.truth[k].pose.translation());
-    }
-    trace.position_aligned_rmse_m = AlignPoints(estimated, true_positions).rmse_m;
-  }
+  trace.position_aligned_rmse_m = AlignedPositionRmse(trace);
   trace.mean_nees = defined > 0 ? nees_sum / defined : kNoValue;
   std::unordered_map<LandmarkId, Eigen::Vector2d> truth;
   for (const Landmark& l : world.landmarks) truth.emplace(l.id, l.position_m);

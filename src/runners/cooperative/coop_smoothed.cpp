@@ -32,7 +32,8 @@ class ProblemBuilder {
 
   // Composes the held control from the last integrated time to t onto the open step.
   void MoveTo(double t) {
-    if (t > step_.t_s && control_.size() > 0) Step(model_, params_, control_, t - step_.t_s, &step_);
+    if (t > step_.t_s && control_.size() > 0)
+      Step(model_, params_, control_, t - step_.t_s, &step_);
     step_.t_s = std::max(step_.t_s, t);
   }
 
@@ -54,8 +55,7 @@ class ProblemBuilder {
     control_ << u.x(), u.y();
   }
 
-  void AddSighting(LandmarkId id, const Eigen::Vector2d& range_bearing,
-                   const Eigen::Matrix2d& R) {
+  void AddSighting(LandmarkId id, const Eigen::Vector2d& range_bearing, const Eigen::Matrix2d& R) {
     const double r = range_bearing.x(), b = range_bearing.y();
     Eigen::Matrix2d J;
     J << std::cos(b), -r * std::sin(b), std::sin(b), r * std::cos(b);
@@ -73,8 +73,9 @@ class ProblemBuilder {
  private:
   // The filtered pose at or before t (the first one before the path starts).
   Pose2 StartAt(double t) const {
-    const auto after = std::upper_bound(start_.begin(), start_.end(), t,
-                                        [](double time, const StampedPose& s) { return time < s.t_s; });
+    const auto after =
+        std::upper_bound(start_.begin(), start_.end(), t,
+                         [](double time, const StampedPose& s) { return time < s.t_s; });
     return after == start_.begin() ? poses_.back() : std::prev(after)->pose;
   }
 
@@ -91,8 +92,7 @@ class ProblemBuilder {
 
 // The sightings within `gate_chi2` of their landmark at `solution`.
 std::vector<SmootherSighting> WithinGate(std::span<const SmootherSighting> sightings,
-                                         const LandmarkSmootherResult& solution,
-                                         double gate_chi2) {
+                                         const LandmarkSmootherResult& solution, double gate_chi2) {
   std::vector<SmootherSighting> kept;
   for (const SmootherSighting& s : sightings) {
     const Eigen::Vector2d e =

@@ -11,8 +11,8 @@
 namespace slamkit::internal {
 
 struct MonoSmoothing {
-  Trajectory path;                        // the smoothed pose at each node
-  LandmarkMap map;                        // the smoothed landmarks (no covariance)
+  Trajectory path;                         // the smoothed pose at each node
+  LandmarkMap map;                         // the smoothed landmarks (no covariance)
   std::vector<LandmarkId> landmark_truth;  // the map's true ids, in its order
   int sightings_used = 0;
   int sightings_dropped = 0;  // farther than params.known_gate_chi2 from the solution
