@@ -89,7 +89,9 @@ Pose2 GraphGridSlam::MatchFrontEnd(const ScanPoints& points, const Pose2& step) 
     return guess;
   }
   stats_.matches_rescued += match.rescued ? 1 : 0;
-  return match.pose;
+  if (params_.refinement.max_iterations == 0) return match.pose;
+  return RefinePoseOnGrid(submaps_.MatchingSubmap()->grid, points.ends, match.pose,
+                          params_.refinement);
 }
 
 void GraphGridSlam::AddNode(const LaserScan& scan, const Pose2& local, const ScanPoints& points) {

@@ -215,6 +215,25 @@ void AddLoopGroups(LoopGroupParams& p, ParamTable& t) {
   t.insert(t.end(), lines.begin(), lines.end());
 }
 
+void AddRefinement(const std::string& s, GridRefinementParams& p, ParamTable& t) {
+  using config::Integer;
+  using config::Number;
+  const ParamTable lines = {
+      Integer(s, "max_iterations", &p.max_iterations, 0,
+              "least-squares iterations refining an accepted match on the interpolated map "
+              "(0: not refined)"),
+      Number(s, "occupied_space_weight", &p.occupied_space_weight, kNonNeg, "",
+             "weight of the points' (1 - P) residuals, over sqrt(points)"),
+      Number(s, "translation_weight", &p.translation_weight, kNonNeg, "1/m",
+             "weight of the move from the match, per metre ..."),
+      Number(s, "rotation_weight", &p.rotation_weight, kNonNeg, "1/rad", "... and per radian"),
+      config::AtMost(Number(s, "unknown_probability", &p.unknown_probability, kNonNeg, "",
+                            "the occupancy given to unobserved cells"),
+                     1.0),
+  };
+  t.insert(t.end(), lines.begin(), lines.end());
+}
+
 void AddGraph(GraphGridSlamParams& g, ParamTable& t) {
   using config::Integer;
   using config::Number;
@@ -281,6 +300,7 @@ void AddGraph(GraphGridSlamParams& g, ParamTable& t) {
   AddMatcher("graph.matcher", g.matcher, t);
   AddMatcher("graph.loop.refinement", c.refinement, t);
   AddLoopGroups(g.loop_groups, t);
+  AddRefinement("graph.refinement", g.refinement, t);
 }
 
 }  // namespace

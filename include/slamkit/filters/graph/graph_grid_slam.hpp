@@ -16,6 +16,7 @@
 #include "slamkit/filters/grid/scan_matcher.hpp"
 #include "slamkit/filters/grid_slam.hpp"
 #include "slamkit/maps/occupancy_grid.hpp"
+#include "slamkit/optim/grid_scan_refinement.hpp"
 #include "slamkit/optim/robust_loss.hpp"
 
 namespace slamkit {
@@ -56,6 +57,11 @@ struct GraphGridSlamParams {
   // along a corridor or onto a look-alike wall, not a correction, and the guess is kept: between
   // scans a few centimetres apart odometry is good to a few millimetres. 0: no such limit.
   double dense_max_correction_m = 0.2;
+  // An accepted match refined by least squares on the submap interpolated between cells
+  // (RefinePoseOnGrid, as Cartographer's front end does after its correlative match). Off
+  // (max_iterations 0) by default: it made Intel's relations better and the sparse CARMEN
+  // logs' figures scatter both ways, freiburg-campus's torn (docs/posegraph.md).
+  GridRefinementParams refinement{.max_iterations = 0};
   // A scan becomes a graph node (inserted into the submaps, searched for loop closures) once the
   // front end has moved this far from the last node; the others only get a pose.
   double node_min_translation_m = 0.2;
