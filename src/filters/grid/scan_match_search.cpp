@@ -3,6 +3,7 @@
 // is scored against the map is in scan_matcher.cpp.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "slamkit/core/angle.hpp"
@@ -45,11 +46,14 @@ MatchResult HillClimb(const GridMapView& grid, const ScanPoints& points, const P
     int taken = -1;
     for (int i = 0; i < 6; ++i) {
       if (i == came_back) continue;
-      const MatchQuality q = EvaluatePose(grid, points, moves[i], params);
-      const double objective = q.score - PriorPenalty(initial, moves[i], params);
+      const double penalty = PriorPenalty(initial, moves[i], params);
+      const std::optional<MatchQuality> q =
+          EvaluatePoseAbove(grid, points, moves[i], params, best_objective + penalty);
+      if (!q) continue;  // its score cannot beat the best
+      const double objective = q->score - penalty;
       if (objective > best_objective) {
         best.pose = moves[i];
-        best.quality = q;
+        best.quality = *q;
         best_objective = objective;
         taken = i;
       }
@@ -105,10 +109,11 @@ Pose2 SweepHeading(const GridMapView& grid, const ScanPoints& coarse_points, con
     for (double sign : {-1.0, 1.0}) {
       const Pose2 turned(initial.x(), initial.y(),
                          initial.theta() + sign * k * coarse.heading_sweep_step_rad);
-      const double score = EvaluatePose(grid, coarse_points, turned, coarse).score;
-      if (score > best_score) {
+      const std::optional<MatchQuality> q =
+          EvaluatePoseAbove(grid, coarse_points, turned, coarse, best_score);
+      if (q && q->score > best_score) {
         best = turned;
-        best_score = score;
+        best_score = q->score;
       }
     }
   }

@@ -133,6 +133,9 @@ double NearestHitDistanceSq(const OccupancyGrid& grid, const Cells& cells,
   });
 }
 
+// Far above the rounding of a sum of a few thousand terms of at most 1.
+constexpr double kPruneMargin = 1e-6;
+
 // A beam's score width (as 1/σ²) and search window in cells.
 struct BeamKernel {
   double inv_sigma_sq;
@@ -151,10 +154,14 @@ BeamKernel RangeScaledKernel(const Eigen::Vector2d& end, const ScanMatcherParams
 
 // Without kScore the score (an exp per beam) is left at zero, for callers that need only the
 // log-likelihood.
+// With a finite `min_score`, stops (returning nullopt) once the score plus one per beam left
+// stays below min_score by more than the sum's rounding could make up.
 template <bool kScore, class Cells>
-MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanPoints& points,
-                      const Pose2& pose, const ScanMatcherParams& params,
-                      std::vector<std::uint8_t>* hits) {
+std::optional<MatchQuality> Evaluate(const OccupancyGrid& grid, const Cells& cells,
+                                     const ScanPoints& points, const Pose2& pose,
+                                     const ScanMatcherParams& params,
+                                     std::vector<std::uint8_t>* hits,
+                                     double min_score = -std::numeric_limits<double>::infinity()) {
   if (hits != nullptr) hits->assign(points.ends.size(), 0);
   MatchQuality q;
   const double inv_score = 1.0 / (params.score_sigma_m * params.score_sigma_m);
@@ -177,6 +184,10 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
     } else {
       q.log_likelihood -= miss_sq * inv_like;
     }
+    if constexpr (kScore) {
+      const double left = double(points.ends.size() - i - 1);
+      if (q.score + left < min_score - kPruneMargin) return std::nullopt;
+    }
   }
   return q;
 }
@@ -186,18 +197,27 @@ MatchQuality Evaluate(const OccupancyGrid& grid, const Cells& cells, const ScanP
 MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
                           const ScanMatcherParams& params, std::vector<std::uint8_t>* hits) {
   if (grid.second == nullptr) {
-    return Evaluate<true>(grid.map, MapOnly{grid.map}, points, pose, params, hits);
+    return *Evaluate<true>(grid.map, MapOnly{grid.map}, points, pose, params, hits);
   }
-  return Evaluate<true>(grid.map, Layered{grid}, points, pose, params, hits);
+  return *Evaluate<true>(grid.map, Layered{grid}, points, pose, params, hits);
+}
+
+std::optional<MatchQuality> EvaluatePoseAbove(const GridMapView& grid, const ScanPoints& points,
+                                              const Pose2& pose, const ScanMatcherParams& params,
+                                              double min_score) {
+  if (grid.second == nullptr) {
+    return Evaluate<true>(grid.map, MapOnly{grid.map}, points, pose, params, nullptr, min_score);
+  }
+  return Evaluate<true>(grid.map, Layered{grid}, points, pose, params, nullptr, min_score);
 }
 
 double ScanLogLikelihood(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
                          const ScanMatcherParams& params) {
   if (grid.second == nullptr) {
     return Evaluate<false>(grid.map, MapOnly{grid.map}, points, pose, params, nullptr)
-        .log_likelihood;
+        ->log_likelihood;
   }
-  return Evaluate<false>(grid.map, Layered{grid}, points, pose, params, nullptr).log_likelihood;
+  return Evaluate<false>(grid.map, Layered{grid}, points, pose, params, nullptr)->log_likelihood;
 }
 
 }  // namespace slamkit

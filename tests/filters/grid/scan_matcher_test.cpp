@@ -105,6 +105,35 @@ TEST(ScanMatcher, EvaluatePoseEqualsTheCellByCellDefinition) {
   }
 }
 
+// EvaluatePoseAbove gives up only on a pose whose whole score stays below the bound, and
+// otherwise returns EvaluatePose's quality exactly: a climb pruning with it decides alike.
+TEST(ScanMatcher, EvaluatePoseAboveGivesUpOnlyBelowItsBound) {
+  const OccupancyGrid grid = RoomMap();
+  Rng rng(12);
+  const ScanMatcherParams params;
+  int pruned = 0;
+  for (int k = 0; k < 100; ++k) {
+    const Pose2 truth(testing::UniformVector3(rng, {-6, -4, -M_PI}, {6, 4, M_PI}));
+    const ScanPoints points = PrepareScan(RoomScan(truth), 30.0, params);
+    const Pose2 pose = truth.Compose(Pose2(testing::NormalVector3(rng, 0.05, 0.05, 0.02)));
+    const MatchQuality full = EvaluatePose(grid, points, pose, params);
+    for (double offset : {-30.0, -1.0, -1e-3, 1e-3, 1.0, 30.0}) {
+      const std::optional<MatchQuality> q =
+          EvaluatePoseAbove(grid, points, pose, params, full.score + offset);
+      if (!q) {
+        ASSERT_LT(full.score, full.score + offset) << k;
+        ++pruned;
+        continue;
+      }
+      ASSERT_EQ(q->score, full.score) << k;
+      ASSERT_EQ(q->log_likelihood, full.log_likelihood) << k;
+      ASSERT_EQ(q->matched, full.matched) << k;
+    }
+  }
+  // A bound 30 above the score leaves the last 30 beams unable to reach it: such poses stop early.
+  EXPECT_GE(pruned, 100);
+}
+
 // A corridor whose far part is not mapped yet: nothing but the mapped part's end tells where the
 // scan lies along the corridor, and a plain climb drifts along it toward the mapped part, where
 // more beams find a wall (by 4 cm here).

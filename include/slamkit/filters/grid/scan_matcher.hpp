@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -93,6 +94,13 @@ struct MatchQuality {
 MatchQuality EvaluatePose(const GridMapView& grid, const ScanPoints& points, const Pose2& pose,
                           const ScanMatcherParams& params,
                           std::vector<std::uint8_t>* hits = nullptr);
+
+// EvaluatePose(...) when its score can exceed `min_score`; nullopt once the beams left cannot
+// lift the score above it (each adds at most 1), so a search comparing candidates with the best
+// so far stops scoring a hopeless one early and takes the same decisions.
+std::optional<MatchQuality> EvaluatePoseAbove(const GridMapView& grid, const ScanPoints& points,
+                                              const Pose2& pose, const ScanMatcherParams& params,
+                                              double min_score);
 
 // EvaluatePose(...).log_likelihood without the score's exp per beam: the proposal and the
 // weights need only the likelihood.
