@@ -129,6 +129,36 @@ void BM_EvaluatePose(benchmark::State& state) {
   }
 }
 
+// One step of the hill climb at its optimum: the six moves around the match of the last scan
+// scored against the match's score, as HillClimb compares them. Arg 0: 0 scores every beam
+// (EvaluatePose, the reference), 1 stops once a move cannot beat the match (EvaluatePoseAbove,
+// what the climb does); arg 1: the step, 0 the climb's first (5 cm, 0.05 rad), 1 its last
+// (1/32 of that). Every move is worse than the match, so each is a candidate the climb rejects.
+void BM_ClimbStep(benchmark::State& state) {
+  const BuiltMap* built = IntelMap();
+  if (!built) return state.SkipWithError("intel.clf not found");
+  const ScanMatcherParams params = RbpfGridSlamParams{}.matcher;
+  const ScanPoints points = PrepareScan(IntelLog()->scans.back(), kUsableRangeM, params);
+  const MatchResult match = MatchScan(built->map, points, built->path.back().pose, params);
+  const double scale = state.range(1) == 0 ? 1.0 : 1.0 / 32.0;
+  const double lin = params.linear_step_m * scale, ang = params.angular_step_rad * scale;
+  const Pose2& m = match.pose;
+  const Pose2 moves[6] = {{m.x() + lin, m.y(), m.theta()}, {m.x() - lin, m.y(), m.theta()},
+                          {m.x(), m.y() + lin, m.theta()}, {m.x(), m.y() - lin, m.theta()},
+                          {m.x(), m.y(), m.theta() + ang}, {m.x(), m.y(), m.theta() - ang}};
+  const double best = match.quality.score;
+  for (auto _ : state) {
+    for (const Pose2& move : moves) {
+      if (state.range(0) == 0) {
+        benchmark::DoNotOptimize(EvaluatePose(built->map, points, move, params));
+      } else {
+        benchmark::DoNotOptimize(EvaluatePoseAbove(built->map, points, move, params, best));
+      }
+    }
+  }
+  state.counters["beams"] = double(points.ends.size());
+}
+
 // P-SLAM's predictor on the map built above, as its thread runs it on a log (SPEC S4): arg 0
 // chooses the target only (the nearest reachable frontier from the last pose: frontier regions
 // and Dijkstra over the map), 1 predicts at that target only (lines, corners, the alignments and
@@ -199,6 +229,9 @@ BENCHMARK(BM_GridSlamScans)
 BENCHMARK(BM_ScanMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_EvaluatePose)
     ->Args({0, 1})->Args({1, 1})->Args({0, 3})->Args({1, 3})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ClimbStep)
+    ->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1})
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_StructurePredictor)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CorrelativeMatcher)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
