@@ -133,7 +133,7 @@ void BM_EvaluatePose(benchmark::State& state) {
 // scored against the match's score, as HillClimb compares them. Arg 0: 0 scores every beam
 // (EvaluatePose, the reference), 1 stops once a move cannot beat the match (EvaluatePoseAbove,
 // what the climb does); arg 1: the step, 0 the climb's first (5 cm, 0.05 rad), 1 its last
-// (1/32 of that). Every move is worse than the match, so each is a candidate the climb rejects.
+// (1/32 of that).
 void BM_ClimbStep(benchmark::State& state) {
   const BuiltMap* built = IntelMap();
   if (!built) return state.SkipWithError("intel.clf not found");
