@@ -2,7 +2,6 @@
 #include "coop_smoothed.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <span>
 
 #include "coop_lag.hpp"
@@ -55,13 +54,13 @@ class ProblemBuilder {
     control_ << u.x(), u.y();
   }
 
+  // The sighting as a point in the vehicle's frame, its covariance carried through the
+  // range-bearing model's inverse.
   void AddSighting(LandmarkId id, const Eigen::Vector2d& range_bearing, const Eigen::Matrix2d& R) {
-    const double r = range_bearing.x(), b = range_bearing.y();
     Eigen::Matrix2d J;
-    J << std::cos(b), -r * std::sin(b), std::sin(b), r * std::cos(b);
-    sightings_.push_back({static_cast<int>(times_.size()) - 1, id,
-                          Eigen::Vector2d(r * std::cos(b), r * std::sin(b)),
-                          J * R * J.transpose()});
+    const Eigen::Vector2d point =
+        InvertRangeBearing(Pose2(), {range_bearing.x(), range_bearing.y()}, nullptr, &J);
+    sightings_.push_back({static_cast<int>(times_.size()) - 1, id, point, J * R * J.transpose()});
   }
 
   double last_node_s() const { return times_.back(); }
